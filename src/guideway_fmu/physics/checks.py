@@ -32,6 +32,13 @@ def non_negative(name: str, value):
     return arr
 
 
+def positive_integer(name: str, value):
+    """Return ``value`` after checking that it is a whole number > 0 (bools refused)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value <= 0:
+        raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    return value
+
+
 def in_range(name: str, value, low: float, high: float):
     """Return ``value`` after checking that it is finite and within [low, high]."""
     arr = finite(name, value)

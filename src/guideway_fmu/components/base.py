@@ -1,0 +1,187 @@
+"""Common machinery of the guideway FMUs (pythonfmu slaves).
+
+pythonfmu 0.7 turns any Python exception raised inside an FMI call into fmi2Fatal, which ends
+every FMU instance of the process. The components therefore never raise through FMI:
+
+* setters only store values; parameters and inputs are checked when they are used;
+* a bad parameter or input makes ``doStep`` log an error naming the variable and return
+  fmi2Discard (the only non-fatal failure status pythonfmu can return), leaving the state and
+  the outputs at their last valid values;
+* output getters evaluate the model from the current inputs (direct feedthrough) and, when that
+  fails, log the error and return the last valid values, never NaN.
+
+The modelDescription written by :meth:`to_xml` adds what pythonfmu leaves out: units with base
+units for every Real variable, and ModelStructure with Outputs and InitialUnknowns listing the
+inputs each output depends on.
+"""
+from __future__ import annotations
+
+import copy
+import math
+from abc import abstractmethod
+from xml.etree.ElementTree import Element, SubElement
+
+from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
+from pythonfmu.enums import Fmi2Initial, Fmi2Status
+
+from .units import BASE_UNITS
+
+
+class GuidewaySlave(Fmi2Slave):
+    """Base class: typed variable registration, checking, lazy outputs and full state save."""
+
+    author = "guideway-fmu"
+    license = "MIT"
+    version = "0.1.0"
+    #: attribute names of internal state saved by get/set FMU state, besides the variables
+    internal_state: tuple[str, ...] = ()
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self._units: dict[str, str] = {}
+        self._depends: dict[str, tuple[str, ...]] = {}
+        self._outputs: dict[str, float] | None = None
+        self._last_valid: dict[str, float] = {}
+        self._model = None
+
+    # -- registration -------------------------------------------------------------------
+    def parameter(self, name: str, start, unit: str | None, description: str) -> None:
+        """A tunable parameter: Real (with ``unit``), Integer (int start) or String (str start)."""
+        setattr(self, name, start)
+        kind = String if isinstance(start, str) else Integer if isinstance(start, int) else Real
+        self.register_variable(kind(
+            name, causality=Fmi2Causality.parameter, variability=Fmi2Variability.tunable,
+            description=description, getter=lambda: getattr(self, name),
+            setter=lambda v: self._set(name, v, parameter=True)))
+        if kind is Real:
+            self._units[name] = unit
+
+    def input(self, name: str, start: float, unit: str, description: str) -> None:
+        setattr(self, name, float(start))
+        self.register_variable(Real(
+            name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
+            description=description, getter=lambda: getattr(self, name),
+            setter=lambda v: self._set(name, v)))
+        self._units[name] = unit
+
+    def output(self, name: str, unit: str, description: str, depends: tuple[str, ...] = ()) -> None:
+        """An output computed by :meth:`evaluate`; ``depends`` names the inputs it feeds through."""
+        self.register_variable(Real(
+            name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
+            initial=Fmi2Initial.calculated, description=description,
+            getter=lambda: self._output(name)))
+        self._units[name] = unit
+        self._depends[name] = tuple(depends)
+
+    def _set(self, name, value, parameter=False):
+        setattr(self, name, value)
+        self._outputs = None
+        if parameter:
+            self._model = None
+
+    # -- to be provided by the components -----------------------------------------------
+    @abstractmethod
+    def build_model(self):
+        """Build and validate the physics objects from the parameters (raise ValueError)."""
+
+    def check_inputs(self) -> None:
+        """Raise ValueError naming the first input that is non-finite or out of range."""
+        for name, var in self._variables_of(Fmi2Causality.input):
+            value = getattr(self, name)
+            if not math.isfinite(value):
+                raise ValueError(f"input {name} must be finite, got {value!r}")
+
+    @abstractmethod
+    def evaluate(self) -> dict[str, float]:
+        """Outputs from the current inputs and state."""
+
+    def advance(self, t: float, h: float) -> None:
+        """Integrate the internal state from t to t + h [s] (stateless components: nothing)."""
+
+    def initialise(self) -> None:
+        """Set the internal state from parameters and inputs when initialization mode ends."""
+
+    # -- FMI calls ----------------------------------------------------------------------
+    def model(self):
+        if self._model is None:
+            self._model = self.build_model()
+        return self._model
+
+    def _guarded(self, action):
+        try:
+            self.model()
+            self.check_inputs()
+            return action()
+        except Exception as exc:  # noqa: BLE001 - an exception here would be fmi2Fatal
+            self.log(f"{self.instance_name}: {exc}", Fmi2Status.error)
+            return None
+
+    def exit_initialization_mode(self):
+        self._guarded(lambda: self.initialise() or True)
+        self._outputs = None
+
+    def do_step(self, current_time: float, step_size: float) -> bool:
+        if not (math.isfinite(step_size) and step_size > 0.0):
+            self.log(f"{self.instance_name}: communication step size must be > 0, got {step_size}",
+                     Fmi2Status.error)
+            return False
+        ok = self._guarded(lambda: self.advance(current_time, step_size) or True)
+        self._outputs = None
+        return bool(ok)
+
+    def _output(self, name: str) -> float:
+        if self._outputs is None:
+            values = self._guarded(self.evaluate)
+            if values is not None and all(math.isfinite(v) for v in values.values()):
+                self._last_valid = values
+            elif values is not None:
+                bad = [k for k, v in values.items() if not math.isfinite(v)]
+                self.log(f"{self.instance_name}: outputs {bad} are not finite; "
+                         f"keeping the last valid values", Fmi2Status.error)
+            self._outputs = self._last_valid
+        return float(self._outputs.get(name, 0.0))
+
+    # -- FMU state ----------------------------------------------------------------------
+    def _get_fmu_state(self):
+        state = {name: getattr(self, name) for name, _ in self._variables_of(
+            Fmi2Causality.parameter, Fmi2Causality.input)}
+        state["__internal__"] = copy.deepcopy({k: getattr(self, k) for k in self.internal_state})
+        state["__last_valid__"] = dict(self._last_valid)
+        return state
+
+    def _set_fmu_state(self, state):
+        for name, value in state.items():
+            if name == "__internal__":
+                for k, v in value.items():
+                    setattr(self, k, copy.deepcopy(v))
+            elif name == "__last_valid__":
+                self._last_valid = dict(value)
+            else:
+                setattr(self, name, value)
+        self._outputs = None
+        self._model = None
+
+    # -- modelDescription ---------------------------------------------------------------
+    def _variables_of(self, *causalities):
+        return [(v.name, v) for v in self.vars.values() if v.causality in causalities]
+
+    def to_xml(self, model_options=dict()) -> Element:
+        root = super().to_xml(model_options)
+        index = {v.name: i + 1 for i, v in enumerate(self.vars.values())}
+        for node in root.find("ModelVariables"):
+            real = node.find("Real")
+            if real is not None:
+                real.set("unit", self._units[node.get("name")])
+        units = Element("UnitDefinitions")
+        for name in sorted(set(self._units.values())):
+            SubElement(SubElement(units, "Unit", name=name), "BaseUnit",
+                       {k: str(e) for k, e in BASE_UNITS[name].items()})
+        root.insert(list(root).index(root.find("CoSimulation")) + 1, units)
+        root.remove(root.find("ModelStructure"))
+        structure = SubElement(root, "ModelStructure")
+        for section in ("Outputs", "InitialUnknowns"):
+            node = SubElement(structure, section)
+            for name, deps in self._depends.items():
+                SubElement(node, "Unknown", index=str(index[name]),
+                           dependencies=" ".join(str(index[d]) for d in deps))
+        return root

@@ -1,0 +1,125 @@
+"""Contact FMUs of the four-row roller guideway: ContactDryHertz and ContactEHL (paper 000)."""
+from __future__ import annotations
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..physics import checks, film, guideway, roller_contact
+from .base import GuidewaySlave
+
+_FEEDTHROUGH = ("y", "y_dot", "u")
+_MICRON = 1e-6
+
+
+class _RollerContact(GuidewaySlave):
+    """Shared interface: inputs y, y_dot, u; loads, films, net force and its tangents as outputs."""
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        g = guideway.Guideway()
+        self.parameter("rollers_per_groove", g.rollers_per_groove, None, "rollers N in each of the 4 grooves")
+        self.parameter("contact_angle", g.contact_angle, "rad", "contact angle from the horizontal")
+        self.parameter("preload", g.preload, "N", "preload force F0, shared by all 4N rollers")
+        self.parameter("roller_radius", g.contact.radius, "m", "roller radius R")
+        self.parameter("roller_length", g.contact.length, "m", "roller length l")
+        self.parameter("roller_load_1um", 0.0, "N",
+                       "roller load at 1 um approach, k (1e-6 m)^(10/9); 0 selects Palmgren's formula")
+        self.parameter("damping", 0.0, "N.s/m", "optional viscous damping of the net force (paper: none)")
+        self.input("y", 0.0, "m", "vertical displacement of the moving body, positive along the load")
+        self.input("y_dot", 0.0, "m/s", "vertical velocity of the moving body")
+        self.input("u", 0.0, "m/s", "feed velocity of the moving body")
+        self.output("F_contact", "N", "net contact force on the moving body, 2N sin(theta)(F_U - F_L) "
+                    "+ damping y_dot, opposing positive y", _FEEDTHROUGH)
+        self.output("F_upper", "N", "load of one roller in an upper groove", _FEEDTHROUGH)
+        self.output("F_lower", "N", "load of one roller in a lower groove", _FEEDTHROUGH)
+        self.output("h_upper", "m", "film thickness of an upper roller contact", _FEEDTHROUGH)
+        self.output("h_lower", "m", "film thickness of a lower roller contact", _FEEDTHROUGH)
+        self.output("K_contact", "N/m", "tangent stiffness dF_contact/dy", _FEEDTHROUGH)
+        self.output("C_contact", "N.s/m", "tangent damping dF_contact/dy_dot", _FEEDTHROUGH)
+
+    def _guideway(self, **contact):
+        checks.non_negative("roller_load_1um", self.roller_load_1um)
+        checks.non_negative("damping", self.damping)
+        k = self.roller_load_1um / _MICRON ** roller_contact.EXPONENT
+        g = guideway.Guideway(
+            rollers_per_groove=self.rollers_per_groove, contact_angle=self.contact_angle,
+            preload=self.preload, stiffness=k,
+            contact=film.LineContact(radius=self.roller_radius, length=self.roller_length, **contact))
+        g.validate()
+        return g
+
+    def _outputs(self, g, f_u, f_l, h_u, h_l, stiffness):
+        return {"F_contact": float(guideway.net_force(g, f_u, f_l) + self.damping * self.y_dot),
+                "F_upper": float(f_u), "F_lower": float(f_l),
+                "h_upper": float(h_u), "h_lower": float(h_l),
+                "K_contact": float(stiffness), "C_contact": float(self.damping)}
+
+
+class ContactDryHertz(_RollerContact):
+    """Dry roller contacts F = k delta^(10/9) with preload; no film. Algebraic, no state."""
+
+    description = __doc__.splitlines()[0]
+
+    def build_model(self):
+        return self._guideway()
+
+    def evaluate(self):
+        g = self.model()
+        f_u, f_l = guideway.row_loads(g, self.y)
+        return self._outputs(g, f_u, f_l, 0.0, 0.0, guideway.frozen_film_stiffness(g, self.y))
+
+
+class ContactEHL(_RollerContact):
+    """Lubricated roller contacts: the EHL film adds to each roller's approach (eqs. 3-5).
+
+    film_model "extrapolated": the films are states obeying the published squeeze relation,
+    integrated with an adaptive Runge-Kutta method (scipy RK45, rtol 1e-6) over each step with
+    y extrapolated linearly from the y and y_dot inputs and u held; they start from the steady
+    film. K_contact is the stiffness with the films held (they cannot change instantly).
+    film_model "pan_hamrock": the steady Pan-Hamrock film, solved with the load at every
+    evaluation (no state); K_contact is the quasi-static stiffness including the film.
+    """
+
+    description = __doc__.splitlines()[0]
+    internal_state = ("films",)
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        c = film.LineContact()
+        self.parameter("e_reduced", c.e_reduced, "Pa", "reduced modulus E'")
+        self.parameter("viscosity", c.viscosity, "Pa.s", "lubricant viscosity at ambient pressure mu0")
+        self.parameter("pressure_viscosity", c.pressure_viscosity, "1/Pa", "pressure-viscosity coefficient alpha")
+        self.parameter("film_model", c.model, None, f"film law, one of {film.FILM_MODELS}")
+        self.films = [0.0, 0.0]
+
+    def build_model(self):
+        return self._guideway(e_reduced=self.e_reduced, viscosity=self.viscosity,
+                              pressure_viscosity=self.pressure_viscosity, model=self.film_model)
+
+    def _extrapolated(self):
+        return self.model().contact.model == "extrapolated"
+
+    def initialise(self):
+        _, _, h_u, h_l = guideway.quasi_static_state(self.model(), self.y, self.u)
+        self.films = [float(h_u), float(h_l)]
+
+    def advance(self, t, h):
+        if not self._extrapolated():
+            return
+        g, y0, v, u = self.model(), self.y, self.y_dot, self.u
+        sol = solve_ivp(lambda s, f: guideway.film_rates(g, y0 + v * s, f[0], f[1], u),
+                        (0.0, h), self.films, method="RK45", rtol=1e-6, atol=1e-13)
+        if not sol.success:
+            raise RuntimeError(f"film integration failed: {sol.message}")
+        self.films = [float(sol.y[0, -1]), float(sol.y[1, -1])]
+
+    def evaluate(self):
+        g = self.model()
+        if self._extrapolated():
+            h_u, h_l = self.films
+            f_u, f_l = guideway.row_loads(g, self.y, h_u, h_l)
+            k = guideway.frozen_film_stiffness(g, self.y, h_u, h_l)
+        else:
+            f_u, f_l, h_u, h_l = guideway.quasi_static_state(g, self.y, self.u)
+            k = guideway.quasi_static_stiffness(g, self.y, self.u)
+        return self._outputs(g, f_u, f_l, h_u, h_l, k)

@@ -1,0 +1,327 @@
+"""Prescribed feed (horizontal) motion of the moving part of a linear guideway.
+
+Each profile is a frozen dataclass whose ``evaluate(t)`` returns position x [m],
+velocity u [m/s] and acceleration a [m/s^2] at the time(s) t [s], analytically:
+x is the exact integral of u with x(0) = 0 and a is the exact derivative of u.
+Arrays in give arrays of the same shape out, a scalar gives floats. Profiles check
+their fields on construction (``validate``), so an invalid profile cannot exist.
+
+Reference: Soleimanian, Mohammadpour, Ahmadian (2020), eq. (1a), eq. (33), Table 1.
+"""
+from __future__ import annotations
+
+import csv
+import inspect
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Protocol
+
+import numpy as np
+
+from . import checks
+
+__all__ = [
+    "FeedProfile", "BiHarmonic", "Oscillating", "Constant", "Trapezoid", "Table",
+    "make_profile",
+]
+
+
+class FeedProfile(Protocol):
+    """What every profile offers."""
+
+    def evaluate(self, t) -> tuple: ...
+
+    def validate(self) -> None: ...
+
+
+def _result(t: np.ndarray, *values):
+    """Broadcast the values to the shape of ``t``; plain floats for a scalar ``t``."""
+    if t.ndim == 0:
+        return tuple(float(v) for v in values)
+    return tuple(v + np.zeros(t.shape) for v in values)
+
+
+def _sine(t: np.ndarray, amplitude: float, omega: float, phase: float):
+    """(x, u, a) of u = amplitude sin(omega t + phase), omega [rad/s], x(0) = 0."""
+    arg = omega * t + phase
+    return (
+        amplitude / omega * (np.cos(phase) - np.cos(arg)),
+        amplitude * np.sin(arg),
+        amplitude * omega * np.cos(arg),
+    )
+
+
+@dataclass(frozen=True)
+class BiHarmonic:
+    """Rig-fitted feed velocity, paper eq. (1a), with the third harmonic:
+
+    u = amplitude1 sin(2 pi f t + phase1) + amplitude2 sin(2 pi (3 f) t + phase2).
+
+    The printed eq. (1a) repeats f_v in both terms, but the text (Experimental rig)
+    states the fit uses the first and third multiples of the excitation frequency,
+    so the second term runs at 3 f. Amplitudes [m/s], phases [rad], frequency f [Hz].
+    """
+
+    amplitude1: float = 0.2919
+    amplitude2: float = 0.0178
+    phase1: float = 2.0588
+    phase2: float = 1.2679
+    frequency: float = 5.0
+
+    def __post_init__(self):
+        self.validate()
+
+    def validate(self) -> None:
+        checks.check_fields(self, {
+            "amplitude1": checks.finite, "amplitude2": checks.finite,
+            "phase1": checks.finite, "phase2": checks.finite,
+            "frequency": checks.positive,
+        })
+
+    def evaluate(self, t):
+        t = np.asarray(t, dtype=float)
+        omega = 2.0 * np.pi * self.frequency
+        first = _sine(t, self.amplitude1, omega, self.phase1)
+        third = _sine(t, self.amplitude2, 3.0 * omega, self.phase2)
+        return _result(t, *(p + q for p, q in zip(first, third)))
+
+
+@dataclass(frozen=True)
+class Oscillating:
+    """Oscillating feed velocity, paper eq. (33): u = mean - amplitude sin(2 pi f t).
+
+    Defaults from Table 1: mean u_bar = 0.2375 m/s, amplitude a_u = 0.25 m/s, f_v = 5 Hz.
+    """
+
+    mean: float = 0.2375
+    amplitude: float = 0.25
+    frequency: float = 5.0
+
+    def __post_init__(self):
+        self.validate()
+
+    def validate(self) -> None:
+        checks.check_fields(self, {
+            "mean": checks.finite, "amplitude": checks.finite,
+            "frequency": checks.positive,
+        })
+
+    def evaluate(self, t):
+        t = np.asarray(t, dtype=float)
+        x, u, a = _sine(t, -self.amplitude, 2.0 * np.pi * self.frequency, 0.0)
+        return _result(t, self.mean * t + x, self.mean + u, a)
+
+
+@dataclass(frozen=True)
+class Constant:
+    """Constant feed velocity u = velocity [m/s]."""
+
+    velocity: float = 0.29
+
+    def __post_init__(self):
+        self.validate()
+
+    def validate(self) -> None:
+        checks.check_fields(self, {"velocity": checks.finite})
+
+    def evaluate(self, t):
+        t = np.asarray(t, dtype=float)
+        return _result(t, self.velocity * t, self.velocity, 0.0)
+
+
+@dataclass(frozen=True)
+class Trapezoid:
+    """Point-to-point move of ``distance`` [m] (sign = direction) starting at ``t_start`` [s].
+
+    Accelerates at ``a_max`` [m/s^2] up to ``v_max`` [m/s], cruises, decelerates at
+    ``a_max``; triangular (peak sqrt(|distance| a_max)) when v_max cannot be reached.
+    At rest before ``t_start`` and after ``t_start + duration``.
+    """
+
+    distance: float = 0.1
+    v_max: float = 0.3
+    a_max: float = 3.0
+    t_start: float = 0.0
+
+    def __post_init__(self):
+        self.validate()
+
+    def validate(self) -> None:
+        checks.check_fields(self, {
+            "distance": checks.finite, "v_max": checks.positive,
+            "a_max": checks.positive, "t_start": checks.non_negative,
+        })
+
+    @property
+    def peak_velocity(self) -> float:
+        """Highest speed reached [m/s] (magnitude)."""
+        return min(self.v_max, float(np.sqrt(abs(self.distance) * self.a_max)))
+
+    @property
+    def ramp_time(self) -> float:
+        """Duration of the acceleration (and of the deceleration) phase [s]."""
+        return self.peak_velocity / self.a_max
+
+    @property
+    def duration(self) -> float:
+        """Time of the whole move [s]."""
+        peak, ramp = self.peak_velocity, self.ramp_time
+        cruise = max(abs(self.distance) / peak - ramp, 0.0) if peak > 0.0 else 0.0
+        return 2.0 * ramp + cruise
+
+    def evaluate(self, t):
+        t = np.asarray(t, dtype=float)
+        peak, ramp, end, acc = self.peak_velocity, self.ramp_time, self.duration, self.a_max
+        tau = np.clip(t - self.t_start, 0.0, end)
+        left = end - tau
+        accelerating = tau < ramp
+        decelerating = ~accelerating & (tau >= end - ramp)
+        x = np.where(accelerating, 0.5 * acc * tau**2,
+                     np.where(decelerating, abs(self.distance) - 0.5 * acc * left**2,
+                              peak * (tau - 0.5 * ramp)))
+        moving = (t >= self.t_start) & (t < self.t_start + end)
+        u = np.where(moving, np.minimum(np.minimum(acc * tau, acc * left), peak), 0.0)
+        a = np.where(moving & accelerating, acc, np.where(moving & decelerating, -acc, 0.0))
+        sign = np.sign(self.distance)
+        return _result(t, sign * x, sign * u, sign * a)
+
+
+def _table_problem(time: np.ndarray, velocity: np.ndarray):
+    """First defect of a velocity table as (field, index, text), or None."""
+    for field, values in (("time", time), ("velocity", velocity)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            return field, int(bad[0]), f"must be finite, got {values[bad[0]]}"
+    bad = np.flatnonzero(np.diff(time) <= 0.0)
+    if bad.size:
+        i = int(bad[0]) + 1
+        return "time", i, f"must increase strictly, got {time[i]} after {time[i - 1]}"
+    return None
+
+
+@dataclass(frozen=True)
+class Table:
+    """Replay of a measured velocity table: ``time`` [s] and ``velocity`` [m/s].
+
+    u is linearly interpolated and held at the end values outside the table (a = 0
+    there); a is the slope of the current segment. x is the exact integral of u from
+    time[0]: x = 0 for t <= time[0], constant-velocity extrapolation after time[-1].
+    The columns are stored as tuples of floats.
+    """
+
+    time: tuple
+    velocity: tuple
+
+    def __post_init__(self):
+        self.validate()
+        object.__setattr__(self, "time", tuple(np.asarray(self.time, dtype=float).tolist()))
+        object.__setattr__(self, "velocity", tuple(np.asarray(self.velocity, dtype=float).tolist()))
+
+    def validate(self) -> None:
+        columns = {}
+        for field in ("time", "velocity"):
+            try:
+                columns[field] = np.asarray(getattr(self, field), dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"Table.{field} must be a sequence of numbers") from None
+            if columns[field].ndim != 1:
+                raise ValueError(f"Table.{field} must be one-dimensional, "
+                                 f"got shape {columns[field].shape}")
+        time, velocity = columns["time"], columns["velocity"]
+        if time.size < 2:
+            raise ValueError(f"Table.time must hold at least 2 samples, got {time.size}")
+        if velocity.size != time.size:
+            raise ValueError(f"Table.velocity must have as many samples as Table.time "
+                             f"({time.size}), got {velocity.size}")
+        problem = _table_problem(time, velocity)
+        if problem:
+            field, index, text = problem
+            raise ValueError(f"Table.{field}[{index}] {text}")
+
+    @cached_property
+    def _nodes(self):
+        """Node times, velocities, positions (cumulative trapezoid) and segment slopes."""
+        time, velocity = np.array(self.time), np.array(self.velocity)
+        dt = np.diff(time)
+        position = np.concatenate(([0.0], np.cumsum(0.5 * (velocity[1:] + velocity[:-1]) * dt)))
+        return time, velocity, position, np.diff(velocity) / dt
+
+    def evaluate(self, t):
+        t = np.asarray(t, dtype=float)
+        time, velocity, position, slope = self._nodes
+        inside = np.clip(t, time[0], time[-1])
+        k = np.clip(np.searchsorted(time, inside, side="right") - 1, 0, time.size - 2)
+        u = np.interp(t, time, velocity)
+        x = (position[k] + 0.5 * (velocity[k] + u) * (inside - time[k])
+             + u * np.maximum(t - inside, 0.0))
+        a = np.where((t >= time[0]) & (t < time[-1]), slope[k], 0.0)
+        return _result(t, x, u, a)
+
+    @classmethod
+    def from_csv(cls, path) -> "Table":
+        """Read a comma-separated file whose header names ``time`` [s] and
+        ``feed_velocity`` or ``u`` [m/s] (``feed_velocity`` wins if both are present).
+
+        Rows are numbered as lines of the file, the header being row 1; blank lines
+        are skipped. Errors name the file, the row and the column.
+        """
+        path = Path(path)
+        with path.open(newline="") as handle:
+            rows = [(n, cells) for n, cells in enumerate(csv.reader(handle), start=1)
+                    if any(cell.strip() for cell in cells)]
+        if not rows:
+            raise ValueError(f"{path}: empty file, expected a header with 'time' "
+                             "and 'feed_velocity' or 'u'")
+        header_row, header = rows[0][0], [cell.strip() for cell in rows[0][1]]
+        velocity_column = next((c for c in ("feed_velocity", "u") if c in header), None)
+        if "time" not in header or velocity_column is None:
+            missing = "'time'" if "time" not in header else "'feed_velocity' or 'u'"
+            raise ValueError(f"{path}: row {header_row}: header {header} has no column {missing}")
+        columns = {"time": header.index("time"), velocity_column: header.index(velocity_column)}
+        data = rows[1:]
+        if len(data) < 2:
+            raise ValueError(f"{path}: needs at least 2 data rows, got {len(data)}")
+
+        values = np.empty((len(data), 2))
+        for i, (row, cells) in enumerate(data):
+            for j, (column, k) in enumerate(columns.items()):
+                cell = cells[k].strip() if k < len(cells) else ""
+                try:
+                    values[i, j] = float(cell)
+                except ValueError:
+                    raise ValueError(f"{path}: row {row}, column '{column}': "
+                                     f"cannot read a number from {cell!r}") from None
+        problem = _table_problem(values[:, 0], values[:, 1])
+        if problem:
+            field, index, text = problem
+            column = "time" if field == "time" else velocity_column
+            raise ValueError(f"{path}: row {data[index][0]}, column '{column}': {text}")
+        return cls(time=tuple(values[:, 0]), velocity=tuple(values[:, 1]))
+
+
+_FACTORIES = {
+    "biharmonic": BiHarmonic,
+    "oscillating": Oscillating,
+    "constant": Constant,
+    "trapezoid": Trapezoid,
+    "table": Table.from_csv,
+}
+
+
+def make_profile(name: str, **params) -> FeedProfile:
+    """Profile selected by name (case-insensitive), e.g. from an FMU string parameter.
+
+    "biharmonic", "oscillating", "constant" and "trapezoid" take the fields of their
+    class as keywords; "table" takes ``path`` and calls ``Table.from_csv``.
+    """
+    key = name.strip().lower()
+    if key not in _FACTORIES:
+        raise ValueError(f"unknown feed profile {name!r}; valid names: {', '.join(_FACTORIES)}")
+    factory = _FACTORIES[key]
+    allowed = list(inspect.signature(factory).parameters)
+    unknown = [p for p in params if p not in allowed]
+    if unknown:
+        raise ValueError(f"unknown parameter {unknown[0]!r} for feed profile {key!r}; "
+                         f"valid parameters: {', '.join(allowed)}")
+    return factory(**params)

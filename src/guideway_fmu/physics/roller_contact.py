@@ -1,0 +1,46 @@
+"""Roller-raceway contact law F = k * delta^(10/9) (paper 000, eq. 2) and its stiffness constant.
+
+``delta`` is the total elastic approach of one roller between its two raceways [m]; a roller
+whose approach is zero or negative has lost contact and carries no load (not an error).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import checks
+
+EXPONENT = 10.0 / 9.0
+
+# Palmgren's line-contact deflection of ONE roller-raceway contact: delta[mm] = 3.84e-5 Q^0.9 / l^0.8,
+# Q in N, l in mm (Palmgren, Ball and Roller Bearing Engineering, 1959; Harris & Kotzalas, eq. 7.8).
+PALMGREN_COEFFICIENT_MM = 3.84e-5
+
+
+def palmgren_stiffness(roller_length: float, contacts_in_series: int = 2) -> float:
+    """Stiffness constant k [N/m^(10/9)] of one roller from Palmgren's formula.
+
+    Both contacts of a roller (rail side and carriage side) deform in series, so the
+    approach of the roller is ``contacts_in_series`` times that of one contact.
+    """
+    checks.positive("roller_length", roller_length)
+    length_mm = roller_length * 1e3
+    c_mm = contacts_in_series * PALMGREN_COEFFICIENT_MM / length_mm**0.8  # mm per N^0.9
+    # delta_mm = c_mm Q^0.9  =>  Q = (1e3 delta_m / c_mm)^(1/0.9)
+    return float((1e3 / c_mm) ** (1.0 / 0.9))
+
+
+def contact_force(delta, k: float):
+    """Roller load [N] for the approach ``delta`` [m]; zero where ``delta`` <= 0."""
+    d = np.maximum(np.asarray(delta, dtype=float), 0.0)
+    return k * d**EXPONENT
+
+
+def contact_stiffness(delta, k: float):
+    """dF/d(delta) [N/m] = (10/9) k delta^(1/9); zero where ``delta`` <= 0."""
+    d = np.maximum(np.asarray(delta, dtype=float), 0.0)
+    return EXPONENT * k * d ** (EXPONENT - 1.0)
+
+
+def approach_for_load(load, k: float):
+    """Inverse of :func:`contact_force`: the approach [m] at which a roller carries ``load`` [N]."""
+    return (np.maximum(np.asarray(load, dtype=float), 0.0) / k) ** (1.0 / EXPONENT)
