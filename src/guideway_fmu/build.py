@@ -1,10 +1,11 @@
 """Build the guideway FMUs with pythonfmu and document their variables.
 
 Each FMU carries the project's ``physics`` and ``components`` code in its resources, so it runs
-wherever the host Python has numpy and scipy. The copy is renamed ``guideway_fmu_<hash>`` (hash
-of the code) and every slave script is ``<FMU>_<hash>.py``: two FMUs built from different
-versions of the code can then be loaded in one process without one silently importing the
-other's modules (a pythonfmu FMU puts its resources on the shared ``sys.path``).
+wherever the host Python has numpy and scipy. A pythonfmu FMU puts its resources on the
+process-wide ``sys.path``, so the copy is renamed ``guideway_fmu_<FMU>_<hash>`` (hash of the code)
+and the slave script ``<FMU>_<hash>.py``: FMUs of different kinds or built from different code
+never import each other's modules, and an FMU whose extracted folder was deleted by its host
+cannot break the next one.
 """
 from __future__ import annotations
 
@@ -31,6 +32,18 @@ FMUS = {
 }
 
 
+# pythonfmu 0.7 releases one reference it does not own to the slave script's namespace each time
+# it creates a slave (NTNU-IHB/PythonFMU issue #228): with nothing more, the namespace is freed at
+# the first instance and the next instantiation in the process fails or corrupts memory. The
+# script therefore holds references to its own namespace for that many instantiations.
+INSTANTIATIONS_PER_PROCESS = 1_000_000
+SLAVE_SCRIPT = '''"""pythonfmu entry point of {name}."""
+from {package}.components.{module} import {name}
+
+_NAMESPACE_REFS = [globals()] * INSTANTIATIONS
+'''.replace("INSTANTIATIONS", str(INSTANTIATIONS_PER_PROCESS))
+
+
 def _shipped_files():
     for entry in SHIPPED:
         path = PACKAGE_DIR / entry
@@ -55,27 +68,27 @@ def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[
     if unknown:
         raise ValueError(f"unknown FMU {unknown[0]!r}; known FMUs: {', '.join(FMUS)}")
     tag = code_hash()
-    package = f"guideway_fmu_{tag}"
     built = []
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_build_") as tmp:
         tmp = Path(tmp)
-        for path in _shipped_files():
-            target = tmp / package / path.relative_to(PACKAGE_DIR)
-            target.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(path, target)
         sys.path.insert(0, str(tmp))
         try:
             for name in names:
+                package = f"guideway_fmu_{name}_{tag}"
+                for path in _shipped_files():
+                    target = tmp / package / path.relative_to(PACKAGE_DIR)
+                    target.parent.mkdir(parents=True, exist_ok=True)
+                    shutil.copy2(path, target)
                 script = tmp / f"{name}_{tag}.py"
-                script.write_text(f'"""pythonfmu entry point of {name}."""\n'
-                                  f"from {package}.components.{FMUS[name]} import {name}\n")
+                script.write_text(SLAVE_SCRIPT.format(name=name, package=package,
+                                                      module=FMUS[name]))
                 fmu = FmuBuilder.build_FMU(script, dest=out_dir / f"{name}.fmu",
                                            project_files=[tmp / package],
                                            canGetAndSetFMUstate=True)
                 built.append(Path(fmu))
         finally:
             sys.path.remove(str(tmp))
-            for module in [m for m in sys.modules if m.startswith(package) or m.endswith(tag)]:
+            for module in [m for m in sys.modules if tag in m]:
                 del sys.modules[module]
     write_readme(out_dir, sorted(out_dir.glob("*.fmu")))
     return built

@@ -27,6 +27,7 @@ from pythonfmu.enums import Fmi2Initial, Fmi2Status
 from .units import BASE_UNITS
 
 
+
 class GuidewaySlave(Fmi2Slave):
     """Base class: typed variable registration, checking, lazy outputs and full state save."""
 

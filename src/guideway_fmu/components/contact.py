@@ -48,7 +48,7 @@ class _RollerContact(GuidewaySlave):
         g.validate()
         return g
 
-    def _outputs(self, g, f_u, f_l, h_u, h_l, stiffness):
+    def _pack(self, g, f_u, f_l, h_u, h_l, stiffness):
         return {"F_contact": float(guideway.net_force(g, f_u, f_l) + self.damping * self.y_dot),
                 "F_upper": float(f_u), "F_lower": float(f_l),
                 "h_upper": float(h_u), "h_lower": float(h_l),
@@ -66,7 +66,7 @@ class ContactDryHertz(_RollerContact):
     def evaluate(self):
         g = self.model()
         f_u, f_l = guideway.row_loads(g, self.y)
-        return self._outputs(g, f_u, f_l, 0.0, 0.0, guideway.frozen_film_stiffness(g, self.y))
+        return self._pack(g, f_u, f_l, 0.0, 0.0, guideway.frozen_film_stiffness(g, self.y))
 
 
 class ContactEHL(_RollerContact):
@@ -122,4 +122,4 @@ class ContactEHL(_RollerContact):
         else:
             f_u, f_l, h_u, h_l = guideway.quasi_static_state(g, self.y, self.u)
             k = guideway.quasi_static_stiffness(g, self.y, self.u)
-        return self._outputs(g, f_u, f_l, h_u, h_l, k)
+        return self._pack(g, f_u, f_l, h_u, h_l, k)
