@@ -58,8 +58,14 @@ class FeedKinematics(GuidewaySlave):
                               t_start=self.t_start),
             "table": dict(path=self.table_file),
         }[name]
-        if name == "table" and not self.table_file:
-            raise ValueError("parameter table_file must name a CSV file when profile is 'table'")
+        if name == "table":
+            if not self.table_file:
+                raise ValueError("parameter table_file must name a CSV file when profile is 'table'")
+            try:
+                return fp.make_profile(name, **params)
+            except OSError as exc:
+                raise ValueError(f"parameter table_file: cannot read {self.table_file!r}: "
+                                 f"{exc.strerror or exc}") from exc
         return fp.make_profile(name, **params)
 
     def setup_experiment(self, start_time, stop_time, tolerance):

@@ -1,7 +1,7 @@
 """Friction FMUs of the four-row roller guideway: FrictionMixedEHL and FrictionCoulomb."""
 from __future__ import annotations
 
-from ..physics import friction, greenwood_tripp
+from ..physics import checks, friction, greenwood_tripp
 from .base import GuidewaySlave
 
 
@@ -16,6 +16,12 @@ class _Friction(GuidewaySlave):
         self.input("F_upper", 0.0, "N", "load of one roller in an upper groove (>= 0)")
         self.input("F_lower", 0.0, "N", "load of one roller in a lower groove (>= 0)")
         self.input("u", 0.0, "m/s", "feed velocity of the moving body")
+
+    def check_inputs(self):
+        super().check_inputs()
+        for name in ("F_upper", "F_lower", "h_upper", "h_lower"):
+            if hasattr(self, name):
+                checks.non_negative(f"input {name}", getattr(self, name))
 
 
 class FrictionMixedEHL(_Friction):

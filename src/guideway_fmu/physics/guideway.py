@@ -94,47 +94,47 @@ def frozen_film_stiffness(g: Guideway, y, h_upper=0.0, h_lower=0.0):
     return 2 * n * s * s * (contact_stiffness(du, g.k) + contact_stiffness(dl, g.k))
 
 
-def _solve_loaded_approach(g: Guideway, delta_geom, c, m, tol=1e-16, max_iter=60):
+def _solve_loaded_approach(g: Guideway, delta_geom, c, m, rtol=1e-13, max_iter=60):
     """Total approach z [m] solving z = delta_geom + C (k z^(10/9))^-m, loads floored (film doc).
 
     A safeguarded Newton iteration on the bracket [max(delta_geom, 0), delta_geom + h_max],
-    vectorised; scipy's elementwise bracketing solver does the same at about 3 ms a call,
-    too slow for a contact FMU evaluated every macro step.
+    vectorised, converged when each residual is below ``rtol`` of its bracket scale. A row with
+    delta_geom + h_max <= 0 has lost contact: z = 0. (scipy's elementwise bracketing solver does
+    the same at about 3 ms a call, too slow for a contact FMU evaluated every macro step.)
     """
     d = np.asarray(delta_geom, dtype=float)
     c = np.broadcast_to(np.asarray(c, dtype=float), d.shape)
     floor = g.contact.load_floor()
     h_max = c * floor ** (-m)
-
-    def phi(z):
-        load = contact_force(z, g.k)
-        f = np.maximum(load, floor)
-        h = c * f ** (-m)
-        dh_dz = np.where(load > floor, -m * h / f * contact_stiffness(z, g.k), 0.0)
-        return z - h - d, 1.0 - dh_dz
-
     loaded = d + h_max > 0.0
     lo = np.where(loaded, np.maximum(d, 0.0), 0.0)
     hi = np.where(loaded, d + h_max, 0.0)
+    tol = rtol * (np.abs(d) + h_max)
     z = hi.copy()
     for _ in range(max_iter):
-        val, slope = phi(z)
+        load = contact_force(z, g.k)
+        f = np.maximum(load, floor)
+        h = c * f ** (-m)
+        val = z - h - d
+        done = ~loaded | (np.abs(val) <= tol)
+        if np.all(done):
+            return np.where(loaded, z, 0.0)
         lo = np.where(val < 0.0, z, lo)
         hi = np.where(val > 0.0, z, hi)
+        slope = 1.0 + np.where(load > floor, m * h / f * contact_stiffness(z, g.k), 0.0)
         step = z - val / slope
-        z = np.where((step > lo) & (step < hi), step, 0.5 * (lo + hi))
-        if np.all((hi - lo <= tol) | (np.abs(val) <= tol)):
-            break
-    else:
-        raise RuntimeError("quasi-static film/load equilibrium did not converge")
-    return np.where(loaded, z, 0.0)
+        inside = (step >= lo) & (step <= hi)
+        z = np.where(done, z, np.where(inside, step, 0.5 * (lo + hi)))
+    raise RuntimeError("quasi-static film/load equilibrium did not converge")
 
 
 def quasi_static_state(g: Guideway, y, u=0.0, lubricated: bool = True):
     """Steady state of the rows at displacement y [m] and feed velocity u [m/s], squeeze neglected.
 
     Returns (F_U, F_L, h_U, h_L): roller loads [N] and films [m], solving each roller's load
-    and film together (the film thins as the load grows). ``lubricated=False`` is the dry contact.
+    and film together (the film thins as the load grows). A row that has lost contact carries
+    the film of a vanishing load (the load floor of :mod:`film`). ``lubricated=False`` is the
+    dry contact.
     """
     du, dl = g._geometric_approach(y)
     if not lubricated:
@@ -143,7 +143,8 @@ def quasi_static_state(g: Guideway, y, u=0.0, lubricated: bool = True):
     geom = np.stack(np.broadcast_arrays(du, dl))
     z = _solve_loaded_approach(g, geom, np.broadcast_to(c, geom.shape), m)
     f = contact_force(z, g.k)
-    return f[0], f[1], z[0] - geom[0], z[1] - geom[1]
+    h = np.where(z > 0.0, z - geom, c * g.contact.load_floor() ** (-m))
+    return f[0], f[1], h[0], h[1]
 
 
 def quasi_static_stiffness(g: Guideway, y, u=0.0, lubricated: bool = True):

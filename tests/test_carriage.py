@@ -1,0 +1,115 @@
+"""Checks of the exact step of the moving body, M y'' = M g + F_ext - F_contact (paper 000 eq. 1b)."""
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from guideway_fmu.physics import carriage
+
+BODY = carriage.Body()  # M = 2.9 kg, g = 9.80665 m/s^2
+K = 4.98e9  # N/m, about the lubricated guideway stiffness at y = 0
+PERIOD = 2 * math.pi * math.sqrt(BODY.mass / K)  # 1.517e-4 s
+F_EXT = 1500.0  # N
+Y_EQ = (BODY.mass * BODY.gravity + F_EXT) / K  # equilibrium of the spring force K y
+Y0, V0 = Y_EQ + 1e-6, 2e-3  # m, m/s
+
+
+def simulate(h, n_steps, k=K, c=0.0, y0=Y0, v0=V0):
+    """Step a body on the linear contact F_contact = k y + c v; returns times and (y, v) rows."""
+    ys, vs, y, v = [y0], [v0], y0, v0
+    for _ in range(n_steps):
+        y, v, _ = carriage.step(BODY, y, v, h, F_EXT, k * y + c * v, k, c)
+        ys.append(y)
+        vs.append(v)
+    return h * np.arange(n_steps + 1), np.array(ys), np.array(vs)
+
+
+@pytest.mark.parametrize("y0, v0, h, f_ext, f_contact", [
+    (0.0, 0.0, 1e-3, 0.0, 0.0),
+    (1e-6, -0.01, 1e-4, 1500.0, 2000.0),
+    (-2e-6, 0.3, 0.05, -40.0, 10.0),
+])
+def test_step_hand_calculation_held_force(y0, v0, h, f_ext, f_contact):
+    a = BODY.gravity + (f_ext - f_contact) / BODY.mass
+    y1, v1, a1 = carriage.step(BODY, y0, v0, h, f_ext, f_contact)
+    assert y1 == pytest.approx(y0 + v0 * h + 0.5 * a * h * h, rel=1e-12, abs=1e-20)
+    assert v1 == pytest.approx(v0 + a * h, rel=1e-12, abs=1e-18)
+    assert a1 == pytest.approx(a, rel=1e-14)
+
+
+def test_step_hand_calculation_free_fall_one_second():
+    # y = 1/2 g t^2 = 4.903325 m after 1 s from rest, v = g t.
+    y1, v1, a1 = carriage.step(BODY, 0.0, 0.0, 1.0, 0.0, 0.0)
+    assert (y1, v1, a1) == pytest.approx((4.903325, 9.80665, 9.80665), rel=1e-12)
+
+
+@pytest.mark.parametrize("h", [PERIOD / 100, PERIOD / 3, 1.7 * PERIOD, 10.3 * PERIOD],
+                         ids=["T/100", "T/3", "1.7T", "10.3T"])
+def test_step_linear_contact_matches_closed_form_harmonic_oscillator(h):
+    # M y'' = M g + F_ext - K y:  y = y_eq + (y0 - y_eq) cos(w t) + (v0 / w) sin(w t).
+    n_steps = max(int(30 * PERIOD / h), 20)
+    t, y, v = simulate(h, n_steps)
+    w = 2 * math.pi / PERIOD
+    amplitude = math.hypot(Y0 - Y_EQ, V0 / w)
+    y_exact = Y_EQ + (Y0 - Y_EQ) * np.cos(w * t) + V0 / w * np.sin(w * t)
+    v_exact = -(Y0 - Y_EQ) * w * np.sin(w * t) + V0 * np.cos(w * t)
+    np.testing.assert_allclose(y, y_exact, rtol=0, atol=1e-9 * amplitude)
+    np.testing.assert_allclose(v, v_exact, rtol=0, atol=1e-9 * amplitude * w)
+
+
+def test_step_convergence_exact_integration_has_no_step_size_dependence():
+    # Common times t = n T: every 3rd step of h = T/3 and every 100th step of h = T/100.
+    _, coarse, _ = simulate(PERIOD / 3, 3 * 20)
+    _, fine, _ = simulate(PERIOD / 100, 100 * 20)
+    np.testing.assert_allclose(coarse[::3], fine[::100], rtol=0, atol=1e-9 * abs(Y0 - Y_EQ))
+    # and after whole periods the body is back where it started
+    np.testing.assert_allclose(coarse[::3], Y0, rtol=0, atol=1e-9 * abs(Y0 - Y_EQ))
+
+
+@pytest.mark.parametrize("damping_ratio", [0.01, 0.3, 1.0, 3.0])
+@pytest.mark.parametrize("h", [PERIOD / 20, 2.5 * PERIOD], ids=["T/20", "2.5T"])
+def test_step_limiting_case_damping_dissipates_energy(damping_ratio, h):
+    # dE/dt = -C v^2: E = M v^2 / 2 + K (y - y_eq)^2 / 2 never grows and decays at least like
+    # exp(-2 zeta w t) (exactly that rate on average for light damping); over 60 periods
+    # exp(-2 * 0.01 * 2 pi * 60) = 5.3e-4.
+    c = 2 * damping_ratio * math.sqrt(K * BODY.mass)
+    _, y, v = simulate(h, int(60 * PERIOD / h), c=c)
+    energy = 0.5 * BODY.mass * v**2 + 0.5 * K * (y - Y_EQ) ** 2
+    resolved = energy > 1e-20 * energy[0]  # above the round-off of y - y_eq (ulp(y) = 1e-22 m)
+    assert np.all(np.diff(energy)[resolved[1:]] < 0.0)
+    assert np.all(np.diff(energy) <= 1e-20 * energy[0])
+    assert energy[-1] < 1e-3 * energy[0]
+
+
+@pytest.mark.parametrize("h", [PERIOD / 100, PERIOD / 3, 4.0 * PERIOD], ids=["T/100", "T/3", "4T"])
+def test_step_hand_calculation_critically_damped(h):
+    # C = 2 sqrt(K M):  y = y_eq + (A + B t) exp(-w t), A = y0 - y_eq, B = v0 + w A.
+    w = 2 * math.pi / PERIOD
+    t, y, v = simulate(h, max(int(5 * PERIOD / h), 10), c=2 * math.sqrt(K * BODY.mass))
+    a_coef, b_coef = Y0 - Y_EQ, V0 + w * (Y0 - Y_EQ)
+    decay = np.exp(-w * t)
+    np.testing.assert_allclose(y, Y_EQ + (a_coef + b_coef * t) * decay, rtol=0, atol=1e-9 * a_coef)
+    np.testing.assert_allclose(v, (b_coef - w * (a_coef + b_coef * t)) * decay,
+                               rtol=0, atol=1e-9 * a_coef * w)
+
+
+@pytest.mark.parametrize("name, kwargs", [
+    ("k_contact", {"k_contact": -1.0}),
+    ("c_contact", {"c_contact": -1e-3}),
+    ("k_contact", {"k_contact": math.nan}),
+])
+def test_step_refuses_negative_or_bad_gains_naming_them(name, kwargs):
+    with pytest.raises(ValueError, match=name):
+        carriage.step(BODY, 0.0, 0.0, 1e-5, 0.0, 0.0, **kwargs)
+
+
+def test_body_defaults_validate():
+    BODY.validate()
+
+
+@pytest.mark.parametrize("field, value", [
+    ("mass", 0.0), ("mass", -2.9), ("mass", math.nan), ("gravity", math.inf)])
+def test_body_validate_refuses_bad_field_naming_it(field, value):
+    with pytest.raises(ValueError, match=f"Body.{field}"):
+        dataclasses.replace(BODY, **{field: value}).validate()

@@ -1,0 +1,533 @@
+"""The six guideway FMUs, built with pythonfmu and driven through fmpy as a co-simulation host.
+
+The FMUs are built once per session (``fmu_dir`` fixture in conftest.py). Physics checks compare
+with values computed by hand here, from the formulas quoted in each test, not with the project's
+physics code.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import site
+import subprocess
+import sys
+from ctypes import byref
+
+import pytest
+from fmpy import calloc, extract, free, read_model_description, simulate_fmu
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+from fmpy.logging import addLoggerProxy
+from fmpy.validation import validate_fmu
+
+from guideway_fmu.build import FMUS
+
+NAMES = list(FMUS)
+STATUS_DISCARD = 2
+STATUS_ERROR = 3  # status of the log messages that explain a discarded step
+NAN = float("nan")
+
+# -- hand values -------------------------------------------------------------------------------
+# Default guideway (paper 000 Table 2): N = 20 rollers per groove, 4 grooves, theta = 45 deg,
+# preload F0 = 9200 N shared by all 4N rollers, roller length l = 8 mm; Palmgren's deflection of
+# one line contact, delta[mm] = 3.84e-5 Q^0.9 / l[mm]^0.8, two contacts in series per roller.
+ROLLERS = 20
+SIN45 = math.sin(math.radians(45.0))
+Q0 = 9200.0 / (4 * ROLLERS)  # 115 N per roller
+K_PALMGREN = (1e3 * 8**0.8 / (2 * 3.84e-5)) ** (1 / 0.9)  # N/m^(10/9) of F = k delta^(10/9)
+DELTA0 = (Q0 / K_PALMGREN) ** 0.9  # preload approach of one roller [m]
+GRAVITY = 9.80665
+MASS = 2.9
+
+
+def hand_dry_loads(y):
+    """(F_U, F_L) [N]: F = k delta^(10/9), delta = delta0 +- y sin(45 deg), 0 if delta <= 0."""
+    def load(delta):
+        return K_PALMGREN * max(delta, 0.0) ** (10 / 9)
+    return load(DELTA0 + y * SIN45), load(DELTA0 - y * SIN45)
+
+
+def hand_dry_net_force(y):
+    """2 N sin(45 deg) (F_U - F_L) [N]."""
+    f_upper, f_lower = hand_dry_loads(y)
+    return 2 * ROLLERS * SIN45 * (f_upper - f_lower)
+
+
+def hand_biharmonic_velocity(t):
+    """Paper eq. (1a) with the third harmonic:
+
+    u = 0.2919 sin(2 pi 5 t + 2.0588) + 0.0178 sin(2 pi 15 t + 1.2679).
+    """
+    return (0.2919 * math.sin(2 * math.pi * 5 * t + 2.0588)
+            + 0.0178 * math.sin(2 * math.pi * 15 * t + 1.2679))
+
+
+# -- driving an FMU by variable name -----------------------------------------------------------
+def _capturing_callbacks(messages):
+    """FMI callbacks whose logger appends (status, message) to ``messages``."""
+    def logger(environment, instance, status, category, message):
+        messages.append((status, message.decode("utf-8", "replace")))
+
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = fmi2CallbackLoggerTYPE(logger)
+    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    addLoggerProxy(byref(callbacks))  # formats the variadic message before it reaches Python
+    return callbacks
+
+
+class Slave:
+    """One initialised co-simulation instance; variables addressed by name, log captured."""
+
+    def __init__(self, path, instance_name, start_values):
+        md = read_model_description(str(path))
+        self.variables = {v.name: v for v in md.modelVariables}
+        self.output_names = [v.name for v in md.modelVariables if v.causality == "output"]
+        self.unzip_dir = extract(str(path))
+        self.messages = []
+        self._callbacks = _capturing_callbacks(self.messages)
+        self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=self.unzip_dir,
+                             modelIdentifier=md.coSimulation.modelIdentifier,
+                             instanceName=instance_name)
+        # pythonfmu forwards the components' error messages only with logging on
+        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=True)
+        self.set(**start_values)
+        self.fmu.setupExperiment(startTime=0.0)
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
+        self.time = 0.0
+
+    def set(self, **values):
+        for name, value in values.items():
+            var = self.variables[name]
+            setter = {"Real": self.fmu.setReal, "Integer": self.fmu.setInteger,
+                      "String": self.fmu.setString}[var.type]
+            setter([var.valueReference], [value])
+
+    def get(self, name):
+        var = self.variables[name]
+        getter = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger,
+                  "String": self.fmu.getString}[var.type]
+        return getter([var.valueReference])[0]
+
+    def outputs(self):
+        return {name: self.get(name) for name in self.output_names}
+
+    def step(self, h, n=1):
+        for _ in range(n):
+            self.fmu.doStep(self.time, h)
+            self.time += h
+        return self
+
+    def error_messages(self):
+        return [text for status, text in self.messages if status >= STATUS_ERROR]
+
+    def free(self):
+        try:
+            self.fmu.terminate()
+        finally:
+            self.fmu.freeInstance()
+            shutil.rmtree(self.unzip_dir, ignore_errors=True)
+
+
+@pytest.fixture
+def open_fmu(fmu_dir):
+    """open_fmu(name, instance_name=None, **start_values): an initialised Slave, freed later."""
+    opened = []
+
+    def open_(name, instance_name=None, **start_values):
+        slave = Slave(fmu_dir / f"{name}.fmu", instance_name or name, start_values)
+        opened.append(slave)
+        return slave
+
+    yield open_
+    for slave in reversed(opened):
+        slave.free()
+
+
+def assert_discarded(slave, h, name):
+    """doStep from the current time returns fmi2Discard and an error message names ``name``."""
+    slave.messages.clear()
+    with pytest.raises(FMICallException) as info:
+        slave.step(h)
+    assert info.value.status == STATUS_DISCARD
+    assert any(name in text for text in slave.error_messages()), slave.messages
+
+
+# -- 1. validation ------------------------------------------------------------------------------
+@pytest.mark.parametrize("name", NAMES)
+def test_fmu_passes_fmpy_validation(fmu_dir, name):
+    assert validate_fmu(str(fmu_dir / f"{name}.fmu")) == []
+
+
+# -- 2. modelDescription -------------------------------------------------------------------------
+# Base-unit exponents (kg, m, s) worked out by hand for the units of the FMU contracts.
+HAND_BASE_UNITS = {"m": (0, 1, 0), "m/s": (0, 1, -1), "m/s2": (0, 1, -2), "N": (1, 1, -2),
+                   "N/m": (1, 0, -2), "N.s/m": (1, 0, -1)}
+
+_CONTACT = {"y": ("input", "m"), "y_dot": ("input", "m/s"), "u": ("input", "m/s"),
+            "F_contact": ("output", "N"), "F_upper": ("output", "N"), "F_lower": ("output", "N"),
+            "h_upper": ("output", "m"), "h_lower": ("output", "m"),
+            "K_contact": ("output", "N/m"), "C_contact": ("output", "N.s/m")}
+CONTRACT = {
+    "FeedKinematics": {"u_cmd": ("input", "m/s"), "x": ("output", "m"), "u": ("output", "m/s"),
+                       "a": ("output", "m/s2")},
+    "VerticalDynamics": {"F_contact": ("input", "N"), "F_ext": ("input", "N"),
+                         "K_contact": ("input", "N/m"), "C_contact": ("input", "N.s/m"),
+                         "y": ("output", "m"), "y_dot": ("output", "m/s"),
+                         "y_ddot": ("output", "m/s2")},
+    "ContactDryHertz": _CONTACT,
+    "ContactEHL": _CONTACT,
+    "FrictionMixedEHL": {"F_upper": ("input", "N"), "F_lower": ("input", "N"),
+                         "h_upper": ("input", "m"), "h_lower": ("input", "m"),
+                         "u": ("input", "m/s"), "F_friction": ("output", "N"),
+                         "F_boundary": ("output", "N"), "F_viscous": ("output", "N")},
+    "FrictionCoulomb": {"F_upper": ("input", "N"), "F_lower": ("input", "N"),
+                        "u": ("input", "m/s"), "F_friction": ("output", "N")},
+}
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_model_description_has_units_descriptions_and_structure(fmu_dir, name):
+    md = read_model_description(str(fmu_dir / f"{name}.fmu"))
+    units = {u.name: u for u in md.unitDefinitions}
+    for var in md.modelVariables:
+        assert var.description, f"{var.name} has no description"
+        if var.type == "Real":
+            assert var.unit in units, f"{var.name}: unit {var.unit!r} not in UnitDefinitions"
+    for unit in units.values():
+        assert unit.baseUnit is not None, f"unit {unit.name} has no BaseUnit"
+        if unit.name in HAND_BASE_UNITS:
+            base = unit.baseUnit
+            assert (base.kg, base.m, base.s) == HAND_BASE_UNITS[unit.name], unit.name
+    outputs = {v.name for v in md.modelVariables if v.causality == "output"}
+    assert {u.variable.name for u in md.outputs} == outputs
+    assert outputs <= {u.variable.name for u in md.initialUnknowns}
+    assert md.coSimulation.canGetAndSetFMUstate
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_model_description_declares_contract_variables(fmu_dir, name):
+    md = read_model_description(str(fmu_dir / f"{name}.fmu"))
+    declared = {v.name: (v.causality, v.unit) for v in md.modelVariables}
+    for var, expected in CONTRACT[name].items():
+        assert declared.get(var) == expected, var
+
+
+# -- 3. physics ---------------------------------------------------------------------------------
+def test_dry_contact_at_zero_displacement_carries_preload_shared_by_all_rollers(open_fmu):
+    dry = open_fmu("ContactDryHertz")
+    assert dry.get("F_contact") == pytest.approx(0.0, abs=1e-9)
+    assert dry.get("F_upper") == pytest.approx(115.0, rel=1e-12)  # 9200 N / 80 rollers
+    assert dry.get("F_lower") == pytest.approx(115.0, rel=1e-12)
+    assert dry.get("h_upper") == 0.0 and dry.get("h_lower") == 0.0
+
+
+def test_dry_contact_matches_hand_calculation(open_fmu):
+    dry = open_fmu("ContactDryHertz", y=1e-6)
+    f_upper, f_lower = hand_dry_loads(1e-6)
+    assert dry.get("F_upper") == pytest.approx(f_upper, rel=1e-10)
+    assert dry.get("F_lower") == pytest.approx(f_lower, rel=1e-10)
+    assert dry.get("F_contact") == pytest.approx(hand_dry_net_force(1e-6), rel=1e-10)
+    dry.step(1e-4)  # algebraic: stepping changes nothing
+    assert dry.get("F_contact") == pytest.approx(hand_dry_net_force(1e-6), rel=1e-10)
+
+
+@pytest.mark.parametrize("name, start", [
+    ("ContactDryHertz", {}),
+    ("ContactEHL", {"u": 0.29}),  # films held: K is the frozen-film stiffness
+    ("ContactEHL", {"u": 0.29, "film_model": "pan_hamrock"}),  # quasi-static, film included
+], ids=["dry", "ehl-extrapolated", "ehl-pan_hamrock"])
+def test_contact_stiffness_matches_central_finite_difference(open_fmu, name, start):
+    contact = open_fmu(name, y=1e-6, **start)
+    stiffness = contact.get("K_contact")
+    dy = 1e-10
+    contact.set(y=1e-6 + dy)
+    f_plus = contact.get("F_contact")  # direct feedthrough: no step needed
+    contact.set(y=1e-6 - dy)
+    f_minus = contact.get("F_contact")
+    assert stiffness > 0.0
+    assert stiffness == pytest.approx((f_plus - f_minus) / (2 * dy), rel=1e-5)
+
+
+def test_dry_contact_loss_unloads_lower_rollers_exactly(open_fmu):
+    dry = open_fmu("ContactDryHertz", y=1e-4)  # 1e-4 sin 45 deg far beyond delta0
+    out = dry.outputs()
+    assert out["F_lower"] == 0.0
+    assert all(math.isfinite(v) for v in out.values()), out
+    assert out["F_upper"] == pytest.approx(hand_dry_loads(1e-4)[0], rel=1e-10)
+    assert out["F_contact"] == pytest.approx(hand_dry_net_force(1e-4), rel=1e-10)
+
+
+@pytest.mark.parametrize("film_model", ["extrapolated", "pan_hamrock"])
+def test_ehl_film_in_submicron_range_adds_to_dry_approach(open_fmu, film_model):
+    ehl = open_fmu("ContactEHL", film_model=film_model, y=1e-6, u=0.29)
+    ehl.step(1e-5, n=3)
+    out = ehl.outputs()
+    for film in ("h_upper", "h_lower"):
+        assert 0.1e-6 < out[film] < 1e-6, out
+    f_upper, f_lower = hand_dry_loads(1e-6)
+    assert out["F_upper"] > f_upper and out["F_lower"] > f_lower
+
+
+def test_feed_biharmonic_matches_eq_1a_with_third_harmonic(open_fmu):
+    feed = open_fmu("FeedKinematics")
+    assert feed.get("u") == pytest.approx(0.2919 * math.sin(2.0588) + 0.0178 * math.sin(1.2679),
+                                          rel=1e-12)
+    feed.step(0.01, n=5)
+    assert feed.get("u") == pytest.approx(hand_biharmonic_velocity(0.05), abs=1e-12)
+
+
+def test_vertical_dynamics_matches_uniform_acceleration(open_fmu):
+    body = open_fmu("VerticalDynamics", F_ext=1000.0, F_contact=0.0, gravity=GRAVITY, mass=MASS)
+    body.step(1e-4, n=10)
+    acceleration = GRAVITY + 1000.0 / MASS
+    assert body.get("y") == pytest.approx(0.5 * acceleration * 1e-3**2, rel=1e-10)
+    assert body.get("y_dot") == pytest.approx(acceleration * 1e-3, rel=1e-10)
+    assert body.get("y_ddot") == pytest.approx(acceleration, rel=1e-12)
+
+
+def test_vertical_dynamics_harmonic_oscillator_returns_after_one_period(open_fmu):
+    # F_contact is the force at the start of each step, extrapolated over the step with K_contact;
+    # a linear spring F = K y coupled that way is integrated exactly: y = 1e-6 cos(omega t).
+    stiffness = 1e6
+    body = open_fmu("VerticalDynamics", K_contact=stiffness, gravity=0.0, y_start=1e-6)
+    period = 2 * math.pi * math.sqrt(MASS / stiffness)
+    for i in range(100):
+        body.set(F_contact=stiffness * body.get("y"))
+        body.step(period / 100)
+        if i == 49:
+            assert body.get("y") == pytest.approx(-1e-6, rel=1e-9)
+    assert body.get("y") == pytest.approx(1e-6, rel=1e-9)
+    assert body.get("y_dot") == pytest.approx(0.0, abs=1e-9 * 1e-6 * 2 * math.pi / period)
+
+
+def test_coulomb_friction_matches_hand_calculation(open_fmu):
+    friction = open_fmu("FrictionCoulomb", coefficient=0.005, F_upper=115.0, F_lower=115.0, u=0.1)
+    # -mu 2N (F_U + F_L) tanh(u / 1e-4), tanh(1000) = 1 in double precision
+    assert friction.get("F_friction") == pytest.approx(-0.005 * 40 * 230, rel=1e-12)
+    friction.set(u=-0.1)
+    assert friction.get("F_friction") == pytest.approx(46.0, rel=1e-12)
+
+
+def test_mixed_ehl_friction_opposes_feed_and_sums_its_parts(open_fmu):
+    friction = open_fmu("FrictionMixedEHL", F_upper=115.0, F_lower=115.0,
+                        h_upper=1e-7, h_lower=1e-7)
+    parts = {}
+    for u in (0.29, -0.29):
+        friction.set(u=u)
+        parts[u] = friction.outputs()
+        total, boundary, viscous = (parts[u][k] for k in ("F_friction", "F_boundary", "F_viscous"))
+        assert math.copysign(1.0, total) == -math.copysign(1.0, u)
+        assert boundary != 0.0 and viscous != 0.0
+        assert boundary + viscous == pytest.approx(total, rel=1e-12)
+    assert parts[-0.29]["F_friction"] == pytest.approx(-parts[0.29]["F_friction"], rel=1e-12)
+
+
+# -- 4. several instances in one process --------------------------------------------------------
+def test_two_instances_of_one_fmu_are_independent(open_fmu):
+    heavy = open_fmu("VerticalDynamics", "heavy", mass=2 * MASS, F_ext=0.0)
+    pushed = open_fmu("VerticalDynamics", "pushed", mass=MASS, F_ext=1000.0)
+    pushed.step(1e-4, n=10)
+    assert heavy.get("y") == 0.0 and heavy.get("y_dot") == 0.0  # not stepped
+    heavy.step(1e-4, n=10)
+    assert heavy.get("y") == pytest.approx(0.5 * GRAVITY * 1e-6, rel=1e-10)
+    assert pushed.get("y") == pytest.approx(0.5 * (GRAVITY + 1000.0 / MASS) * 1e-6, rel=1e-10)
+
+
+def test_two_different_contact_fmus_side_by_side(open_fmu):
+    dry = open_fmu("ContactDryHertz", y=1e-6, u=0.29)
+    ehl = open_fmu("ContactEHL", y=1e-6, u=0.29)
+    for _ in range(3):
+        dry.step(1e-5)
+        ehl.step(1e-5)
+    assert dry.get("F_contact") == pytest.approx(hand_dry_net_force(1e-6), rel=1e-10)
+    assert dry.get("h_upper") == 0.0
+    assert 0.1e-6 < ehl.get("h_upper") < 1e-6
+    assert ehl.get("F_upper") > dry.get("F_upper")
+
+
+SIMULATIONS = {  # name -> start values of a short simulate_fmu run
+    "FeedKinematics": {},
+    "VerticalDynamics": {"F_ext": 1000.0},
+    "ContactDryHertz": {"y": 1e-6},
+    "ContactEHL": {"y": 1e-6, "u": 0.29},
+    "FrictionCoulomb": {"F_upper": 115.0, "F_lower": 115.0, "u": 0.1},
+}
+
+
+def test_fmus_instantiate_again_after_a_previous_instance_was_freed(fmu_dir):
+    def run(name):
+        result = simulate_fmu(str(fmu_dir / f"{name}.fmu"), start_values=SIMULATIONS[name],
+                              stop_time=1e-3, output_interval=1e-4)
+        return [tuple(row) for row in result]
+
+    first = {name: run(name) for name in SIMULATIONS}
+    for _ in range(4):
+        for name in SIMULATIONS:
+            assert run(name) == first[name], name
+    assert first["ContactDryHertz"][-1][1] == pytest.approx(hand_dry_net_force(1e-6), rel=1e-10)
+
+
+# -- 5. FMU state --------------------------------------------------------------------------------
+@pytest.mark.parametrize("name, start, h", [
+    ("VerticalDynamics", {"K_contact": 1e6, "C_contact": 50.0, "F_contact": 200.0, "F_ext": 1000.0},
+     1e-4),
+    ("ContactEHL", {"film_model": "extrapolated", "u": 0.29, "y": 1e-6, "y_dot": 1e-3}, 1e-5),
+    ("FeedKinematics", {}, 1e-3),
+], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics"])
+def test_restored_fmu_state_replays_identically(open_fmu, name, start, h):
+    slave = open_fmu(name, **start).step(h, n=3)
+    state, time = slave.fmu.getFMUstate(), slave.time
+    recorded = [slave.step(h).outputs() for _ in range(5)]
+    assert recorded[0] != recorded[-1]  # the state really evolves
+    slave.fmu.setFMUstate(state)
+    slave.time = time
+    assert [slave.step(h).outputs() for _ in range(5)] == recorded
+    slave.fmu.freeFMUstate(state)
+
+
+# -- 6. bad inputs and parameters ----------------------------------------------------------------
+LOADS = {"F_upper": 115.0, "F_lower": 115.0, "u": 0.1}
+FILMS = {"h_upper": 1e-7, "h_lower": 1e-7}
+
+
+def case(*values, id):
+    return pytest.param(*values, id=id)
+
+
+@pytest.mark.parametrize("name, start, bad, name_in_message", [
+    case("ContactEHL", {"u": 0.29, "y": 1e-6}, {"y": NAN}, "input y", id="ContactEHL-y-nan"),
+    case("FrictionCoulomb", LOADS, {"F_upper": -1.0}, "F_upper",
+         id="FrictionCoulomb-F_upper-negative"),
+    case("FrictionMixedEHL", {**LOADS, **FILMS}, {"F_lower": -1.0}, "F_lower",
+         id="FrictionMixedEHL-F_lower-negative"),
+    case("VerticalDynamics", {"F_ext": 1000.0}, {"K_contact": -1.0}, "K_contact",
+         id="VerticalDynamics-K_contact-negative"),
+])
+def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, start, bad,
+                                                              name_in_message):
+    slave = open_fmu(name, **start).step(1e-5)
+    last_valid = slave.outputs()
+    slave.set(**bad)
+    assert_discarded(slave, 1e-5, name_in_message)
+    after = slave.outputs()
+    assert all(math.isfinite(v) for v in after.values()), after
+    assert after == last_valid
+    slave.set(**{k: start.get(k, 0.0) for k in bad})  # the instance is not fatal
+    slave.step(1e-5)
+    assert all(math.isfinite(v) for v in slave.outputs().values())
+
+
+@pytest.mark.parametrize("name, bad, good, name_in_message", [
+    case("VerticalDynamics", {"mass": -1.0}, {"mass": MASS}, "mass", id="VerticalDynamics-mass"),
+    case("ContactDryHertz", {"rollers_per_groove": 0}, {"rollers_per_groove": 20},
+         "rollers_per_groove", id="ContactDryHertz-rollers_per_groove"),
+    case("FeedKinematics", {"profile": "nope"}, {"profile": "biharmonic"}, "profile",
+         id="FeedKinematics-profile"),
+    case("FeedKinematics", {"profile": "table"}, {"profile": "biharmonic"}, "table_file",
+         id="FeedKinematics-table_file-empty"),
+    case("FeedKinematics", {"profile": "table", "table_file": "/nonexistent_dir/feed.csv"},
+         {"profile": "biharmonic"}, "table_file", id="FeedKinematics-table_file-no-such-file"),
+])
+def test_bad_parameter_discards_step_naming_it_until_fixed(open_fmu, name, bad, good,
+                                                           name_in_message):
+    slave = open_fmu(name).step(1e-4)
+    last_valid = slave.outputs()
+    slave.set(**bad)
+    assert_discarded(slave, 1e-4, name_in_message)
+    assert slave.outputs() == last_valid
+    slave.set(**good)
+    slave.step(1e-4)  # not fatal: works again once the value is fixed
+    assert all(math.isfinite(v) for v in slave.outputs().values())
+
+
+def test_vertical_dynamics_resumes_exactly_after_bad_mass_is_fixed(open_fmu):
+    body = open_fmu("VerticalDynamics", F_ext=1000.0).step(1e-4, n=5)
+    body.set(mass=-1.0)
+    assert_discarded(body, 1e-4, "mass")
+    body.set(mass=MASS)
+    body.step(1e-4, n=5)  # the discarded step did not advance the state: retry from t = 5e-4
+    assert body.get("y") == pytest.approx(0.5 * (GRAVITY + 1000.0 / MASS) * 1e-3**2, rel=1e-10)
+
+
+def test_feed_table_profile_replays_csv(open_fmu, tmp_path):
+    table = tmp_path / "feed.csv"
+    table.write_text("time,feed_velocity\n0.0,0.0\n0.1,0.2\n0.2,0.2\n")
+    feed = open_fmu("FeedKinematics", profile="table", table_file=str(table))
+    feed.step(0.01, n=5)  # t = 0.05: ramp at 2 m/s2
+    assert feed.get("u") == pytest.approx(0.1, rel=1e-9)
+    assert feed.get("a") == pytest.approx(2.0, rel=1e-9)
+    assert feed.get("x") == pytest.approx(0.5 * 2.0 * 0.05**2, rel=1e-9)
+    feed.step(0.01, n=10)  # t = 0.15: cruising at 0.2 m/s after 0.01 m of ramp
+    assert feed.get("u") == pytest.approx(0.2, rel=1e-9)
+    assert feed.get("a") == 0.0
+    assert feed.get("x") == pytest.approx(0.01 + 0.2 * 0.05, rel=1e-9)
+
+
+# -- 7. self-contained ---------------------------------------------------------------------------
+# Runs with -I -S: no PYTHONPATH, no user site, no .pth files (so not the editable guideway_fmu);
+# the host's site-packages are appended only for numpy, scipy, fmpy and pythonfmu.
+_CLEAN_HOST = r"""
+import json, sys
+from pathlib import Path
+sys.path.extend(json.loads(sys.argv[1]))
+try:
+    import guideway_fmu
+except ImportError:
+    pass
+else:
+    raise SystemExit(f"guideway_fmu is importable from {guideway_fmu.__file__}")
+from fmpy import extract, simulate_fmu
+unzip = Path(extract("ContactDryHertz.fmu", unzipdir="extracted")).resolve()
+result = simulate_fmu(str(unzip), start_values={"y": 1e-6}, stop_time=1e-4, output_interval=1e-4)
+modules = {name: getattr(module, "__file__", None) for name, module in sys.modules.items()
+           if name.startswith(("ContactDryHertz", "guideway_fmu"))}
+print(json.dumps({"F_contact": float(result["F_contact"][-1]), "modules": modules,
+                  "resources": str(unzip / "resources")}))
+"""
+
+
+def test_fmu_runs_from_its_own_resources_in_a_clean_process(fmu_dir, tmp_path):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    shutil.copy(fmu_dir / "ContactDryHertz.fmu", elsewhere)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    site_dirs = [d for d in site.getsitepackages() if os.path.isdir(d)]
+    run = subprocess.run([sys.executable, "-I", "-S", "-c", _CLEAN_HOST, json.dumps(site_dirs)],
+                         cwd=elsewhere, env=env, capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stderr
+    report = json.loads(run.stdout.strip().splitlines()[-1])
+    assert report["F_contact"] == pytest.approx(hand_dry_net_force(1e-6), rel=1e-10)
+    modules = report["modules"]
+    slave_scripts = [n for n in modules if n.startswith("ContactDryHertz_")]
+    shipped = [n for n in modules if n.startswith("guideway_fmu_ContactDryHertz_")]
+    assert slave_scripts and shipped, modules
+    assert "guideway_fmu" not in modules
+    for name in slave_scripts + shipped:
+        assert modules[name].startswith(report["resources"] + os.sep), (name, modules[name])
+
+
+# -- 8. README -----------------------------------------------------------------------------------
+def _readme_units(text):
+    """{FMU name: {variable: unit}} from the tables of the generated README."""
+    sections = {}
+    for block in text.split("\n## ")[1:]:
+        title, *lines = block.splitlines()
+        cells = [[c.strip() for c in line.strip("|").split("|")] for line in lines
+                 if line.startswith("| `")]
+        sections[title.strip()] = {row[0].strip("`"): row[3] for row in cells}
+    return sections
+
+
+def test_readme_lists_every_fmu_variable_with_its_unit(fmu_dir):
+    sections = _readme_units((fmu_dir / "README.md").read_text())
+    assert set(sections) == set(NAMES)
+    for name in NAMES:
+        md = read_model_description(str(fmu_dir / f"{name}.fmu"))
+        assert sections[name] == {v.name: v.unit or "" for v in md.modelVariables}
+        for var, (_, unit) in CONTRACT[name].items():
+            assert sections[name][var] == unit, (name, var)
