@@ -531,3 +531,9 @@ def test_readme_lists_every_fmu_variable_with_its_unit(fmu_dir):
         assert sections[name] == {v.name: v.unit or "" for v in md.modelVariables}
         for var, (_, unit) in CONTRACT[name].items():
             assert sections[name][var] == unit, (name, var)
+
+
+def test_committed_fmus_readme_is_up_to_date(fmu_dir):
+    committed = Path(__file__).resolve().parents[1] / "fmus" / "README.md"
+    assert committed.read_text() == (fmu_dir / "README.md").read_text(), (
+        "fmus/README.md is stale: run `guideway-fmu build` and commit it")
