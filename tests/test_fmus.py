@@ -13,6 +13,7 @@ import shutil
 import site
 import subprocess
 import sys
+from pathlib import Path
 from ctypes import byref
 
 import pytest
