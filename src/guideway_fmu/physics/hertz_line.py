@@ -18,10 +18,3 @@ def contact_area(load, length: float, radius: float, e_reduced: float):
     """Apparent (nominal) contact area 2 b l [m^2]."""
     return 2.0 * half_width(load, length, radius, e_reduced) * length
 
-
-def max_pressure(load, length: float, radius: float, e_reduced: float):
-    """Peak Hertz pressure p_H [Pa] = 2 w' / (pi b); zero where the load is zero."""
-    b = half_width(load, length, radius, e_reduced)
-    w = np.maximum(np.asarray(load, dtype=float), 0.0) / length
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(b > 0.0, 2.0 * w / (np.pi * b), 0.0)
