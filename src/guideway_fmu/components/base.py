@@ -27,7 +27,6 @@ from pythonfmu.enums import Fmi2Initial, Fmi2Status
 from .units import BASE_UNITS
 
 
-
 class GuidewaySlave(Fmi2Slave):
     """Base class: typed variable registration, checking, lazy outputs and full state save."""
 
@@ -40,6 +39,7 @@ class GuidewaySlave(Fmi2Slave):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         self._units: dict[str, str] = {}
+        self._non_negative: list[str] = []
         self._depends: dict[str, tuple[str, ...]] = {}
         self._outputs: dict[str, float] | None = None
         self._last_valid: dict[str, float] = {}
@@ -57,8 +57,12 @@ class GuidewaySlave(Fmi2Slave):
         if kind is Real:
             self._units[name] = unit
 
-    def input(self, name: str, start: float, unit: str, description: str) -> None:
+    def input(self, name: str, start: float, unit: str, description: str,
+              non_negative: bool = False) -> None:
+        """A Real input; ``non_negative`` inputs are refused below zero."""
         setattr(self, name, float(start))
+        if non_negative:
+            self._non_negative.append(name)
         self.register_variable(Real(
             name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
             description=description, getter=lambda: getattr(self, name),
@@ -87,10 +91,12 @@ class GuidewaySlave(Fmi2Slave):
 
     def check_inputs(self) -> None:
         """Raise ValueError naming the first input that is non-finite or out of range."""
-        for name, var in self._variables_of(Fmi2Causality.input):
+        for name in self._variables_of(Fmi2Causality.input):
             value = getattr(self, name)
             if not math.isfinite(value):
                 raise ValueError(f"input {name} must be finite, got {value!r}")
+            if name in self._non_negative and value < 0.0:
+                raise ValueError(f"input {name} must be >= 0, got {value!r}")
 
     @abstractmethod
     def evaluate(self) -> dict[str, float]:
@@ -144,7 +150,7 @@ class GuidewaySlave(Fmi2Slave):
 
     # -- FMU state ----------------------------------------------------------------------
     def _get_fmu_state(self):
-        state = {name: getattr(self, name) for name, _ in self._variables_of(
+        state = {name: getattr(self, name) for name in self._variables_of(
             Fmi2Causality.parameter, Fmi2Causality.input)}
         state["__internal__"] = copy.deepcopy({k: getattr(self, k) for k in self.internal_state})
         state["__last_valid__"] = dict(self._last_valid)
@@ -164,7 +170,7 @@ class GuidewaySlave(Fmi2Slave):
 
     # -- modelDescription ---------------------------------------------------------------
     def _variables_of(self, *causalities):
-        return [(v.name, v) for v in self.vars.values() if v.causality in causalities]
+        return [v.name for v in self.vars.values() if v.causality in causalities]
 
     def to_xml(self, model_options=dict()) -> Element:
         root = super().to_xml(model_options)

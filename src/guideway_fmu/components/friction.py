@@ -1,7 +1,7 @@
 """Friction FMUs of the four-row roller guideway: FrictionMixedEHL and FrictionCoulomb."""
 from __future__ import annotations
 
-from ..physics import checks, friction, greenwood_tripp
+from ..physics import friction, greenwood_tripp
 from .base import GuidewaySlave
 
 
@@ -13,15 +13,9 @@ class _Friction(GuidewaySlave):
         self.parameter("rollers_per_groove", 20, None, "rollers N in each of the 4 grooves")
         self.parameter("velocity_tolerance", 1e-4, "m/s",
                        "velocity scale of the regularised sign, tanh(u / v); 0 gives sign(u)")
-        self.input("F_upper", 0.0, "N", "load of one roller in an upper groove (>= 0)")
-        self.input("F_lower", 0.0, "N", "load of one roller in a lower groove (>= 0)")
+        self.input("F_upper", 0.0, "N", "load of one roller in an upper groove (>= 0)", True)
+        self.input("F_lower", 0.0, "N", "load of one roller in a lower groove (>= 0)", True)
         self.input("u", 0.0, "m/s", "feed velocity of the moving body")
-
-    def check_inputs(self):
-        super().check_inputs()
-        for name in ("F_upper", "F_lower", "h_upper", "h_lower"):
-            if hasattr(self, name):
-                checks.non_negative(f"input {name}", getattr(self, name))
 
 
 class FrictionMixedEHL(_Friction):
@@ -45,8 +39,8 @@ class FrictionMixedEHL(_Friction):
         self.parameter("viscosity", p.viscosity, "Pa.s", "lubricant viscosity mu0")
         self.parameter("limiting_shear_stress", p.limiting_shear_stress, "Pa", "tau_l0 of eq. 28")
         self.parameter("limiting_shear_slope", p.limiting_shear_slope, "1", "beta_m of eq. 28")
-        self.input("h_upper", 0.0, "m", "film thickness of an upper roller contact (>= 0)")
-        self.input("h_lower", 0.0, "m", "film thickness of a lower roller contact (>= 0)")
+        self.input("h_upper", 0.0, "m", "film thickness of an upper roller contact (>= 0)", True)
+        self.input("h_lower", 0.0, "m", "film thickness of a lower roller contact (>= 0)", True)
         self.output("F_friction", "N", "friction force on the moving body (boundary + viscous)", self._PARTS)
         self.output("F_boundary", "N", "boundary (asperity) part of F_friction", self._PARTS)
         self.output("F_viscous", "N", "viscous (film shear) part of F_friction", self._PARTS)

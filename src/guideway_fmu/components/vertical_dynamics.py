@@ -14,7 +14,7 @@ class VerticalDynamics(GuidewaySlave):
     """
 
     description = __doc__.splitlines()[0]
-    internal_state = ("y", "y_dot", "time")
+    internal_state = ("y", "y_dot")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -24,12 +24,14 @@ class VerticalDynamics(GuidewaySlave):
         self.parameter("y_dot_start", 0.0, "m/s", "velocity at the start time")
         self.input("F_contact", 0.0, "N", "net contact force on the body, opposing positive y")
         self.input("F_ext", 0.0, "N", "external vertical force, positive along +y")
-        self.input("K_contact", 0.0, "N/m", "tangent stiffness dF_contact/dy (optional, >= 0)")
-        self.input("C_contact", 0.0, "N.s/m", "tangent damping dF_contact/dy_dot (optional, >= 0)")
+        self.input("K_contact", 0.0, "N/m", "tangent stiffness dF_contact/dy (optional, >= 0)",
+                   non_negative=True)
+        self.input("C_contact", 0.0, "N.s/m", "tangent damping dF_contact/dy_dot (optional, >= 0)",
+                   non_negative=True)
         self.output("y", "m", "vertical displacement")
         self.output("y_dot", "m/s", "vertical velocity")
         self.output("y_ddot", "m/s2", "vertical acceleration", depends=("F_contact", "F_ext"))
-        self.y, self.y_dot, self.time = 0.0, 0.0, 0.0
+        self.y, self.y_dot = 0.0, 0.0
 
     def build_model(self):
         body = carriage.Body(mass=self.mass, gravity=self.gravity)
@@ -38,21 +40,12 @@ class VerticalDynamics(GuidewaySlave):
         checks.finite("y_dot_start", self.y_dot_start)
         return body
 
-    def check_inputs(self):
-        super().check_inputs()
-        checks.non_negative("input K_contact", self.K_contact)
-        checks.non_negative("input C_contact", self.C_contact)
-
-    def setup_experiment(self, start_time, stop_time, tolerance):
-        self.time = start_time
-
     def initialise(self):
         self.y, self.y_dot = float(self.y_start), float(self.y_dot_start)
 
     def advance(self, t, h):
         self.y, self.y_dot, _ = carriage.step(self.model(), self.y, self.y_dot, h, self.F_ext,
                                               self.F_contact, self.K_contact, self.C_contact)
-        self.time = t + h
 
     def evaluate(self):
         body = self.model()
