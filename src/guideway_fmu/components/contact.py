@@ -1,7 +1,6 @@
 """Contact FMUs of the four-row roller guideway: ContactDryHertz and ContactEHL (paper 000)."""
 from __future__ import annotations
 
-import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..physics import checks, film, guideway, roller_contact
@@ -120,6 +119,7 @@ class ContactEHL(_RollerContact):
             f_u, f_l = guideway.row_loads(g, self.y, h_u, h_l)
             k = guideway.frozen_film_stiffness(g, self.y, h_u, h_l)
         else:
-            f_u, f_l, h_u, h_l = guideway.quasi_static_state(g, self.y, self.u)
-            k = guideway.quasi_static_stiffness(g, self.y, self.u)
+            state = guideway.quasi_static_state(g, self.y, self.u)
+            f_u, f_l, h_u, h_l = state
+            k = guideway.quasi_static_stiffness(g, self.y, self.u, state=state)
         return self._pack(g, f_u, f_l, h_u, h_l, k)

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import checks
-from .film import LineContact, film_law, film_rate, unsqueezed_film
+from .film import LineContact, film_law, film_rate, steady_film, unsqueezed_film
 from .roller_contact import (approach_for_load, contact_force, contact_stiffness,
                              palmgren_stiffness)
 
@@ -143,13 +143,16 @@ def quasi_static_state(g: Guideway, y, u=0.0, lubricated: bool = True):
     geom = np.stack(np.broadcast_arrays(du, dl))
     z = _solve_loaded_approach(g, geom, np.broadcast_to(c, geom.shape), m)
     f = contact_force(z, g.k)
-    h = np.where(z > 0.0, z - geom, c * g.contact.load_floor() ** (-m))
+    h = steady_film(g.contact, f, u)
     return f[0], f[1], h[0], h[1]
 
 
-def quasi_static_stiffness(g: Guideway, y, u=0.0, lubricated: bool = True):
-    """Quasi-static stiffness K(y) = dF_N/dy [N/m] (eqs. 6-14, corrected: module doc)."""
-    fu, fl, hu, hl = quasi_static_state(g, y, u, lubricated)
+def quasi_static_stiffness(g: Guideway, y, u=0.0, lubricated: bool = True, state=None):
+    """Quasi-static stiffness K(y) = dF_N/dy [N/m] (eqs. 6-14, corrected: module doc).
+
+    ``state`` is :func:`quasi_static_state` at the same arguments where the caller has it.
+    """
+    fu, fl, hu, hl = quasi_static_state(g, y, u, lubricated) if state is None else state
     _, m = film_law(g.contact, u)
     s, floor = np.sin(g.contact_angle), g.contact.load_floor()
 
