@@ -46,8 +46,8 @@ class FeedKinematics(GuidewaySlave):
         name = self.profile.strip().lower()
         if name == "input":
             return None
-        if name not in PROFILES:
-            raise ValueError(f"parameter profile must be one of {PROFILES}, got {self.profile!r}")
+        if name == "table":
+            return self._table()
         params = {
             "biharmonic": dict(amplitude1=self.amplitude1, amplitude2=self.amplitude2,
                                phase1=self.phase1, phase2=self.phase2, frequency=self.frequency),
@@ -56,17 +56,19 @@ class FeedKinematics(GuidewaySlave):
             "constant": dict(velocity=self.velocity),
             "trapezoid": dict(distance=self.distance, v_max=self.v_max, a_max=self.a_max,
                               t_start=self.t_start),
-            "table": dict(path=self.table_file),
-        }[name]
-        if name == "table":
-            if not self.table_file:
-                raise ValueError("parameter table_file must name a CSV file when profile is 'table'")
-            try:
-                return fp.make_profile(name, **params)
-            except OSError as exc:
-                raise ValueError(f"parameter table_file: cannot read {self.table_file!r}: "
-                                 f"{exc.strerror or exc}") from exc
+        }.get(name)
+        if params is None:
+            raise ValueError(f"parameter profile must be one of {PROFILES}, got {self.profile!r}")
         return fp.make_profile(name, **params)
+
+    def _table(self):
+        if not self.table_file:
+            raise ValueError("parameter table_file must name a CSV file when profile is 'table'")
+        try:
+            return fp.Table.from_csv(self.table_file)
+        except OSError as exc:
+            raise ValueError(f"parameter table_file: cannot read {self.table_file!r}: "
+                             f"{exc.strerror or exc}") from exc
 
     def setup_experiment(self, start_time, stop_time, tolerance):
         self.time = start_time

@@ -15,7 +15,6 @@ import inspect
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
-from typing import Protocol
 
 import numpy as np
 
@@ -27,12 +26,11 @@ __all__ = [
 ]
 
 
-class FeedProfile(Protocol):
-    """What every profile offers."""
+class FeedProfile:
+    """Base of the profiles: ``evaluate(t) -> (x, u, a)``; checked by ``validate`` when created."""
 
-    def evaluate(self, t) -> tuple: ...
-
-    def validate(self) -> None: ...
+    def __post_init__(self):
+        self.validate()
 
 
 def _result(t: np.ndarray, *values):
@@ -53,7 +51,7 @@ def _sine(t: np.ndarray, amplitude: float, omega: float, phase: float):
 
 
 @dataclass(frozen=True)
-class BiHarmonic:
+class BiHarmonic(FeedProfile):
     """Rig-fitted feed velocity, paper eq. (1a), with the third harmonic:
 
     u = amplitude1 sin(2 pi f t + phase1) + amplitude2 sin(2 pi (3 f) t + phase2).
@@ -68,9 +66,6 @@ class BiHarmonic:
     phase1: float = 2.0588
     phase2: float = 1.2679
     frequency: float = 5.0
-
-    def __post_init__(self):
-        self.validate()
 
     def validate(self) -> None:
         checks.check_fields(self, {
@@ -88,7 +83,7 @@ class BiHarmonic:
 
 
 @dataclass(frozen=True)
-class Oscillating:
+class Oscillating(FeedProfile):
     """Oscillating feed velocity, paper eq. (33): u = mean - amplitude sin(2 pi f t).
 
     Defaults from Table 1: mean u_bar = 0.2375 m/s, amplitude a_u = 0.25 m/s, f_v = 5 Hz.
@@ -97,9 +92,6 @@ class Oscillating:
     mean: float = 0.2375
     amplitude: float = 0.25
     frequency: float = 5.0
-
-    def __post_init__(self):
-        self.validate()
 
     def validate(self) -> None:
         checks.check_fields(self, {
@@ -114,13 +106,10 @@ class Oscillating:
 
 
 @dataclass(frozen=True)
-class Constant:
+class Constant(FeedProfile):
     """Constant feed velocity u = velocity [m/s]."""
 
     velocity: float = 0.29
-
-    def __post_init__(self):
-        self.validate()
 
     def validate(self) -> None:
         checks.check_fields(self, {"velocity": checks.finite})
@@ -131,7 +120,7 @@ class Constant:
 
 
 @dataclass(frozen=True)
-class Trapezoid:
+class Trapezoid(FeedProfile):
     """Point-to-point move of ``distance`` [m] (sign = direction) starting at ``t_start`` [s].
 
     Accelerates at ``a_max`` [m/s^2] up to ``v_max`` [m/s], cruises, decelerates at
@@ -143,9 +132,6 @@ class Trapezoid:
     v_max: float = 0.3
     a_max: float = 3.0
     t_start: float = 0.0
-
-    def __post_init__(self):
-        self.validate()
 
     def validate(self) -> None:
         checks.check_fields(self, {
@@ -201,7 +187,7 @@ def _table_problem(time: np.ndarray, velocity: np.ndarray):
 
 
 @dataclass(frozen=True)
-class Table:
+class Table(FeedProfile):
     """Replay of a measured velocity table: ``time`` [s] and ``velocity`` [m/s].
 
     u is linearly interpolated and held at the end values outside the table (a = 0
@@ -214,7 +200,7 @@ class Table:
     velocity: tuple
 
     def __post_init__(self):
-        self.validate()
+        super().__post_init__()
         object.__setattr__(self, "time", tuple(np.asarray(self.time, dtype=float).tolist()))
         object.__setattr__(self, "velocity", tuple(np.asarray(self.velocity, dtype=float).tolist()))
 
