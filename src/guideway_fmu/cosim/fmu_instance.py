@@ -1,6 +1,7 @@
 """One FMI 2.0 co-simulation FMU instance driven through fmpy, with variables by name."""
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 from fmpy import extract, read_model_description
@@ -49,5 +50,8 @@ class FmuInstance:
         self.fmu.exitInitializationMode()
 
     def close(self) -> None:
+        """Terminate and free the instance, unload it and delete its extracted files."""
         self.fmu.terminate()
         self.fmu.freeInstance()
+        self.fmu.freeLibrary()
+        shutil.rmtree(self._unzip, ignore_errors=True)

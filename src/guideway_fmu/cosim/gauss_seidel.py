@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from fmpy.fmi1 import FMICallException
 
 from .fmu_instance import FmuInstance
 
@@ -72,7 +73,12 @@ def run(instances: dict[str, FmuInstance], connections: list[Connection], order:
     for i in range(n):
         for name in order:
             _propagate(instances, connections, target=name)
-            instances[name].fmu.doStep(currentCommunicationPoint=time[i], communicationStepSize=step)
+            try:
+                instances[name].fmu.doStep(currentCommunicationPoint=time[i],
+                                           communicationStepSize=step)
+            except FMICallException as exc:
+                raise RuntimeError(f"FMU instance {name!r} failed its step at t = {time[i]:.9g} s "
+                                   f"(see its log above): {exc}") from exc
         sample(i + 1)
     return Recording(time, {f"{a}.{b}": data[:, k] for k, (a, b) in enumerate(signals)},
                      {f"{a}.{b}": instances[a].unit(b) for a, b in signals})
