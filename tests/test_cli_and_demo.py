@@ -38,3 +38,10 @@ def test_rig_run_oscillates_at_the_natural_frequency(fmu_dir):
     assert abs(frequency / 6590.0 - 1) < 0.1  # ~10 periods: coarse count, published 6590 Hz
     assert np.all(np.isfinite(rec.columns["friction.F_friction"]))
     assert np.all(rec.columns["friction.F_friction"] < 0)  # feed velocity is positive here
+
+
+def test_cli_demo_refuses_bad_step_before_any_work(tmp_path, capsys):
+    assert cli.main(["demo", "--out", str(tmp_path / "o"), "--fmus", str(tmp_path / "f"),
+                     "--step", "-1"]) == 2
+    assert "--step" in capsys.readouterr().err
+    assert not (tmp_path / "f").exists()

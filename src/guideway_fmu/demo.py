@@ -21,8 +21,39 @@ import numpy as np  # noqa: E402
 from . import build  # noqa: E402
 from .cosim import gauss_seidel  # noqa: E402
 from .cosim.fmu_instance import FmuInstance  # noqa: E402
+from .physics import carriage, film, guideway  # noqa: E402
 
 RIG_SPEED = 0.29  # m/s, feed speed amplitude of the rig's bi-harmonic fit (eq. 1a)
+PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, paper 000, unloaded case
+
+
+def rig_facts(u: float = RIG_SPEED) -> dict:
+    """k, preload approach, films and natural frequencies of paper 000's rig at y = 0, feed speed u."""
+    g, body = guideway.Guideway(), carriage.Body()
+    state = guideway.quasi_static_state(g, 0.0, u)
+    f_u, h_u = float(state[0]), float(state[2])
+    k_lub = float(guideway.quasi_static_stiffness(g, 0.0, u, state=state))
+    k_dry = float(guideway.quasi_static_stiffness(g, 0.0, lubricated=False))
+    pan_hamrock = film.LineContact(model="pan_hamrock")
+
+    def hz(k):
+        return float(np.sqrt(k / body.mass) / (2 * np.pi))
+
+    return {
+        "roller_stiffness_k_N_per_m^(10/9)": g.k,
+        "preload_per_roller_N": g.preload_per_roller,
+        "preload_approach_delta0_m": g.delta0,
+        "feed_speed_m_per_s": u,
+        "film_extrapolated_at_y0_m": h_u,
+        "film_pan_hamrock_at_y0_m": float(film.steady_film(pan_hamrock, f_u, u)),
+        "roller_load_at_y0_N": f_u,
+        "rail_mass_kg": body.mass,
+        "stiffness_y0_lubricated_N_per_m": k_lub,
+        "stiffness_y0_dry_N_per_m": k_dry,
+        "natural_frequency_lubricated_Hz": hz(k_lub),
+        "natural_frequency_dry_Hz": hz(k_dry),
+        "paper_natural_frequency_Hz": PAPER_NATURAL_FREQUENCY,
+    }
 
 
 def stiffness_curves(fmu_dir: Path, y: np.ndarray, u: float = RIG_SPEED) -> dict[str, np.ndarray]:
