@@ -237,6 +237,15 @@ def test_dry_contact_matches_hand_calculation(open_fmu):
     assert dry.get("F_contact") == pytest.approx(hand_dry_net_force(1e-6), rel=1e-10)
 
 
+def test_roller_load_1um_parameter_matches_hand_conversion(open_fmu):
+    # k = 1.5 x Palmgren given as the roller load at 1 um, k (1e-6 m)^(10/9); hand law at that k.
+    k = 1.5 * K_PALMGREN
+    dry = open_fmu("ContactDryHertz", roller_load_1um=k * 1e-6 ** (10 / 9), y=1e-6)
+    delta0 = (Q0 / k) ** 0.9
+    f_upper = k * (delta0 + 1e-6 * SIN45) ** (10 / 9)
+    assert dry.get("F_upper") == pytest.approx(f_upper, rel=1e-9)
+
+
 @pytest.mark.parametrize("name, start", [
     ("ContactDryHertz", {}),
     ("ContactEHL", {"u": 0.29}),  # films held: K is the frozen-film stiffness
