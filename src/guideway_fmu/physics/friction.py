@@ -120,7 +120,8 @@ def mixed_ehl_friction(F_upper, F_lower, h_upper, h_lower, u, params: MixedFrict
 
 @dataclass(frozen=True)
 class CoulombParams:
-    """Constant-coefficient friction; mu of rolling guideways is about 0.002-0.01.
+    """Constant-coefficient friction; the default mu = 0.005 is an order of magnitude only (no
+    source): take mu from the guideway's catalogue or fit it to a measurement.
 
     Call :meth:`validate` once at set-up: :func:`coulomb_friction` does not re-check it.
     """
