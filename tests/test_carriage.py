@@ -1,4 +1,8 @@
-"""Checks of the exact step of the moving body, M y'' = M g + F_ext - F_contact (paper 000 eq. 1b)."""
+"""Checks of the step of the moving body, M y'' = M g + F_e(t) + F_in - F_contact (paper 000 eq. 1b).
+
+RK4 on substeps with omega h <= 0.05 has a phase error of (omega h)^4 / 120 = 5.2e-8 rad per
+radian, amplitude error far below that: over 30 periods (188 rad) 1e-5 of the amplitude.
+"""
 import dataclasses
 import math
 
@@ -54,17 +58,19 @@ def test_step_linear_contact_matches_closed_form_harmonic_oscillator(h):
     amplitude = math.hypot(Y0 - Y_EQ, V0 / w)
     y_exact = Y_EQ + (Y0 - Y_EQ) * np.cos(w * t) + V0 / w * np.sin(w * t)
     v_exact = -(Y0 - Y_EQ) * w * np.sin(w * t) + V0 * np.cos(w * t)
-    np.testing.assert_allclose(y, y_exact, rtol=0, atol=1e-9 * amplitude)
-    np.testing.assert_allclose(v, v_exact, rtol=0, atol=1e-9 * amplitude * w)
+    bound = 1e-7 * w * t[-1] * amplitude  # twice the RK4 phase error (module doc) over the run
+    np.testing.assert_allclose(y, y_exact, rtol=0, atol=bound)
+    np.testing.assert_allclose(v, v_exact, rtol=0, atol=bound * w)
 
 
-def test_step_convergence_exact_integration_has_no_step_size_dependence():
+def test_step_convergence_substeps_make_results_independent_of_the_step():
     # Common times t = n T: every 3rd step of h = T/3 and every 100th step of h = T/100.
     _, coarse, _ = simulate(PERIOD / 3, 3 * 20)
     _, fine, _ = simulate(PERIOD / 100, 100 * 20)
-    np.testing.assert_allclose(coarse[::3], fine[::100], rtol=0, atol=1e-9 * abs(Y0 - Y_EQ))
+    amplitude = math.hypot(Y0 - Y_EQ, V0 * PERIOD / (2 * math.pi))
+    np.testing.assert_allclose(coarse[::3], fine[::100], rtol=0, atol=2e-5 * amplitude)
     # and after whole periods the body is back where it started
-    np.testing.assert_allclose(coarse[::3], Y0, rtol=0, atol=1e-9 * abs(Y0 - Y_EQ))
+    np.testing.assert_allclose(coarse[::3], Y0, rtol=0, atol=2e-5 * amplitude)
 
 
 @pytest.mark.parametrize("damping_ratio", [0.01, 0.3, 1.0, 3.0])
@@ -89,9 +95,41 @@ def test_step_hand_calculation_critically_damped(h):
     t, y, v = simulate(h, max(int(5 * PERIOD / h), 10), c=2 * math.sqrt(K * BODY.mass))
     a_coef, b_coef = Y0 - Y_EQ, V0 + w * (Y0 - Y_EQ)
     decay = np.exp(-w * t)
-    np.testing.assert_allclose(y, Y_EQ + (a_coef + b_coef * t) * decay, rtol=0, atol=1e-9 * a_coef)
+    np.testing.assert_allclose(y, Y_EQ + (a_coef + b_coef * t) * decay, rtol=0, atol=1e-7 * a_coef)
     np.testing.assert_allclose(v, (b_coef - w * (a_coef + b_coef * t)) * decay,
-                               rtol=0, atol=1e-9 * a_coef * w)
+                               rtol=0, atol=1e-7 * a_coef * w)
+
+
+@pytest.mark.parametrize("h", [PERIOD / 50, 7.3 * PERIOD], ids=["T/50", "7.3T"])
+def test_step_harmonic_load_matches_closed_form_forced_oscillator(h):
+    # M y'' = M g + A sin(W t) - K y from y = y_eq + y_p(0), v = v_p(0) stays on the particular
+    # solution y_p = A / (K - M W^2) sin(W t): no free vibration is excited.
+    load = carriage.ExternalLoad(amplitude=3000.0, frequency=4500.0)
+    W = 2 * math.pi * load.frequency
+    amp = load.amplitude / (K - BODY.mass * W**2)
+    y_eq = BODY.mass * BODY.gravity / K
+    y, v, t = y_eq, amp * W, 0.0
+    for _ in range(int(20 * PERIOD / h)):
+        y, v, _ = carriage.step(BODY, y, v, h, 0.0, K * y, K, 0.0, t=t, load=load)
+        t += h
+        assert y == pytest.approx(y_eq + amp * math.sin(W * t), abs=2e-5 * abs(amp))
+
+
+def test_step_hand_calculation_harmonic_load_on_free_body():
+    # y'' = g + (A / M) sin(W t), from rest: y = g t^2 / 2 + A / (M W^2) (W t - sin(W t)).
+    load = carriage.ExternalLoad(amplitude=100.0, frequency=50.0)
+    W, h = 2 * math.pi * 50.0, 0.0137
+    y, v, a = carriage.step(BODY, 0.0, 0.0, h, 0.0, 0.0, load=load)
+    c = load.amplitude / (BODY.mass * W**2)
+    assert y == pytest.approx(0.5 * BODY.gravity * h**2 + c * (W * h - math.sin(W * h)), rel=1e-9)
+    assert v == pytest.approx(BODY.gravity * h + c * W * (1 - math.cos(W * h)), rel=1e-8)
+    assert a == pytest.approx(BODY.gravity + load(h) / BODY.mass, rel=1e-12)
+
+
+@pytest.mark.parametrize("field, value", [("amplitude", math.nan), ("frequency", -1.0)])
+def test_external_load_validate_refuses_bad_field_naming_it(field, value):
+    with pytest.raises(ValueError, match=f"ExternalLoad.{field}"):
+        carriage.ExternalLoad(**{field: value}).validate()
 
 
 @pytest.mark.parametrize("name, kwargs", [

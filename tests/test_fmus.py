@@ -302,7 +302,8 @@ def test_vertical_dynamics_matches_uniform_acceleration(open_fmu):
 
 def test_vertical_dynamics_harmonic_oscillator_returns_after_one_period(open_fmu):
     # F_contact is the force at the start of each step, extrapolated over the step with K_contact;
-    # a linear spring F = K y coupled that way is integrated exactly: y = 1e-6 cos(omega t).
+    # a linear spring F = K y coupled that way is integrated to RK4 accuracy (5e-8 rad per rad,
+    # physics/carriage.py): y = 1e-6 cos(omega t).
     stiffness = 1e6
     body = open_fmu("VerticalDynamics", K_contact=stiffness, gravity=0.0, y_start=1e-6)
     period = 2 * math.pi * math.sqrt(MASS / stiffness)
@@ -312,7 +313,20 @@ def test_vertical_dynamics_harmonic_oscillator_returns_after_one_period(open_fmu
         if i == 49:
             assert body.get("y") == pytest.approx(-1e-6, rel=1e-9)
     assert body.get("y") == pytest.approx(1e-6, rel=1e-9)
-    assert body.get("y_dot") == pytest.approx(0.0, abs=1e-9 * 1e-6 * 2 * math.pi / period)
+    assert body.get("y_dot") == pytest.approx(0.0, abs=1e-6 * 1e-6 * 2 * math.pi / period)
+
+
+def test_vertical_dynamics_harmonic_load_parameters_hand_calculation(open_fmu):
+    # free body, F_e = 50 + 100 sin(2 pi 50 t + 0.3): y'' = g + F_e / M at every instant
+    body = open_fmu("VerticalDynamics", gravity=GRAVITY, mass=MASS, load_static=50.0,
+                    load_amplitude=100.0, load_frequency=50.0, load_phase=0.3)
+    body.step(1e-3, n=7)
+    load = 50.0 + 100.0 * math.sin(2 * math.pi * 50.0 * 7e-3 + 0.3)
+    assert body.get("y_ddot") == pytest.approx(GRAVITY + load / MASS, rel=1e-12)
+    # v = g t + (static t + A / W (cos(phase) - cos(W t + phase))) / M
+    w = 2 * math.pi * 50.0
+    v = GRAVITY * 7e-3 + (50.0 * 7e-3 + 100.0 / w * (math.cos(0.3) - math.cos(w * 7e-3 + 0.3))) / MASS
+    assert body.get("y_dot") == pytest.approx(v, rel=1e-9)
 
 
 def test_coulomb_friction_matches_hand_calculation(open_fmu):

@@ -209,3 +209,31 @@ def test_guideway_defaults_validate():
 def test_guideway_validate_refuses_bad_field_naming_it(changes, name):
     with pytest.raises(ValueError, match=name):
         dataclasses.replace(GUIDEWAY, **changes).validate()
+
+
+@pytest.mark.parametrize("model", ["extrapolated", "pan_hamrock"])
+def test_row_kernel_matches_array_functions_independent_implementation(model):
+    g = gw.Guideway(contact=film.LineContact(model=model))
+    kernel = gw.RowKernel(g)
+    rng = np.random.default_rng(3)
+    # y over +-3 um covers both rows losing contact (delta0 + h ~ 1.3 um)
+    for y, hu, hl in zip(rng.uniform(-3e-6, 3e-6, 200), rng.uniform(0.0, 4e-7, 200),
+                         rng.uniform(0.0, 4e-7, 200)):
+        force, k, fu, fl = kernel.contact(y, hu, hl)
+        fu_a, fl_a = gw.row_loads(g, y, hu, hl)
+        assert (fu, fl) == pytest.approx((float(fu_a), float(fl_a)), rel=1e-12, abs=1e-12)
+        assert kernel.loads(y, hu, hl) == pytest.approx((fu, fl), rel=1e-15)
+        assert force == pytest.approx(float(gw.net_force(g, fu_a, fl_a)), rel=1e-12, abs=1e-9)
+        assert k == pytest.approx(float(gw.frozen_film_stiffness(g, y, hu, hl)), rel=1e-12)
+
+
+@pytest.mark.parametrize("u", [0.29, -0.05, 0.0])
+def test_row_kernel_film_rates_match_array_functions(u):
+    g = gw.Guideway()
+    kernel = gw.RowKernel(g)
+    rng = np.random.default_rng(4)
+    for y, hu, hl in zip(rng.uniform(-3e-6, 3e-6, 100), rng.uniform(1e-9, 1.2e-6, 100),
+                         rng.uniform(1e-9, 1.2e-6, 100)):
+        expected = gw.film_rates(g, y, hu, hl, u)
+        assert kernel.film_rates(y, hu, hl, u) == pytest.approx(
+            (float(expected[0]), float(expected[1])), rel=1e-12, abs=1e-30)

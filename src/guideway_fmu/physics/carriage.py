@@ -1,22 +1,23 @@
-"""Vertical dynamics of the moving body (paper 000, eq. 1b): M y'' = M g + F_ext - F_contact.
+"""Vertical dynamics of the moving body (paper 000, eq. 1b): M y'' = M g + F_e(t) + F_in - F_contact.
 
-y [m] is positive in the direction of gravity and of the external load. Over one communication
-step of length H the contact force is taken as its value at the start of the step plus its
-tangent, F_contact(t) = F0 + K (y - y0) + C (y' - v0), with the contact model's tangent stiffness
-K [N/m] and damping C [N s/m] (K = C = 0: the force is held constant). The resulting linear ODE
-with constant coefficients is integrated exactly with a matrix exponential, so the step is exact
-for the held/linearised force whatever H is, and unconditionally stable for K, C >= 0.
+y [m] is positive in the direction of gravity and of the external load. F_e(t) is the external
+load of eq. 1b (static plus harmonic, :class:`ExternalLoad`), known at every instant; F_in [N] is
+a further force held over the step. Over one communication step the contact force is taken as its
+value at the start of the step plus its tangent, F_contact(t) = F0 + K (y - y0) + C (y' - v0),
+with the contact model's tangent stiffness K [N/m] and damping C [N s/m] (K = C = 0: the force
+is held constant). That linear ODE is integrated with the classical fourth-order Runge-Kutta
+method on equal substeps of at most SUBSTEP_PHASE / omega, omega the largest of sqrt(K/M), C/M
+and the load's angular frequency: stable at any communication step, with a phase error near 1e-8 rad per radian of motion.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-
-import numpy as np
-from scipy.linalg import expm
 
 from . import checks
 
 STANDARD_GRAVITY = 9.80665  # m/s^2
+SUBSTEP_PHASE = 0.05  # rad, largest omega * substep of the Runge-Kutta integration
 
 
 @dataclass(frozen=True)
@@ -32,16 +33,51 @@ class Body:
         checks.check_fields(self, {"mass": checks.positive, "gravity": checks.finite})
 
 
-def step(body: Body, y: float, v: float, h: float, f_ext: float, f_contact: float,
-         k_contact: float = 0.0, c_contact: float = 0.0):
-    """Advance (y [m], v [m/s]) by the step h [s]; returns (y, v, a) at the end of the step."""
+@dataclass(frozen=True)
+class ExternalLoad:
+    """F_e(t) = static + amplitude sin(2 pi frequency t + phase) [N] (paper 000, eq. 1b)."""
+
+    static: float = 0.0  # N
+    amplitude: float = 0.0  # N
+    frequency: float = 0.0  # Hz
+    phase: float = 0.0  # rad
+
+    def validate(self) -> None:
+        checks.check_fields(self, {"static": checks.finite, "amplitude": checks.finite,
+                                   "frequency": checks.non_negative, "phase": checks.finite})
+
+    def __call__(self, t: float) -> float:
+        return self.static + self.amplitude * math.sin(2.0 * math.pi * self.frequency * t + self.phase)
+
+
+def step(body: Body, y: float, v: float, h: float, f_in: float, f_contact: float,
+         k_contact: float = 0.0, c_contact: float = 0.0, t: float = 0.0,
+         load: ExternalLoad | None = None):
+    """Advance (y [m], v [m/s]) from time t [s] by the step h [s]; returns (y, v, a) at t + h."""
     checks.non_negative("k_contact", k_contact)
     checks.non_negative("c_contact", c_contact)
     m = body.mass
-    # y'' = b - (K/M) y - (C/M) y' with everything held over the step folded into b.
-    b = body.gravity + (f_ext - f_contact + k_contact * y + c_contact * v) / m
-    a_mat = np.array([[0.0, 1.0, 0.0],
-                      [-k_contact / m, -c_contact / m, b],
-                      [0.0, 0.0, 0.0]])
-    y1, v1, _ = expm(a_mat * h) @ np.array([y, v, 1.0])
-    return float(y1), float(v1), float(b - (k_contact * y1 + c_contact * v1) / m)
+    kk, cc = k_contact / m, c_contact / m
+    # y'' = b + F_e(t)/M - kk y - cc y' with everything held over the step folded into b.
+    b = body.gravity + (f_in - f_contact + k_contact * y + c_contact * v) / m
+    fe = (lambda s: 0.0) if load is None or load.amplitude == load.static == 0.0 else (
+        lambda s: load(s) / m)
+
+    def acc(s, yy, vv):
+        return b + fe(s) - kk * yy - cc * vv
+
+    omega = max(math.sqrt(kk), cc, 0.0 if load is None else 2.0 * math.pi * load.frequency)
+    n = max(1, math.ceil(h * omega / SUBSTEP_PHASE))
+    dt = h / n
+    for i in range(n):
+        s = t + i * dt
+        a1 = acc(s, y, v)
+        y2, v2 = y + 0.5 * dt * v, v + 0.5 * dt * a1
+        a2 = acc(s + 0.5 * dt, y2, v2)
+        y3, v3 = y + 0.5 * dt * v2, v + 0.5 * dt * a2
+        a3 = acc(s + 0.5 * dt, y3, v3)
+        y4, v4 = y + dt * v3, v + dt * a3
+        a4 = acc(s + dt, y4, v4)
+        y, v = (y + dt / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4),
+                v + dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4))
+    return y, v, acc(t + h, y, v)

@@ -88,6 +88,11 @@ def film_law(contact: LineContact, u):
     return c, m_load
 
 
+def speed_exponent(contact: LineContact) -> float:
+    """Exponent p of the feed speed in the film law, C(u) = C(1 m/s) |u|^p."""
+    return _LAWS[contact.model][2]
+
+
 def steady_film(contact: LineContact, load, u):
     """Steady (no squeeze) film thickness [m] under the roller load [N] at feed velocity u [m/s]."""
     c, m = film_law(contact, u)
