@@ -1,4 +1,6 @@
 import json
+import zipfile
+from pathlib import Path
 
 import numpy as np
 
@@ -30,18 +32,58 @@ def test_stiffness_curves_through_fmus_match_physics_derivative(fmu_dir):
     assert abs(curves["F_lubricated"][10]) < 1e-6  # y = 0: symmetric preload
 
 
-def test_rig_run_oscillates_at_the_natural_frequency(fmu_dir):
-    rec = demo.rig_run(fmu_dir, stop=1.5e-3, step=5e-6)
-    y = rec.columns["body.y"] - rec.columns["body.y"].mean()
+SCENARIOS = Path(__file__).parents[1] / "orchestration" / "scenarios"
+
+
+def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_path, capsys):
+    out = tmp_path / "run"
+    assert cli.main(["run", str(SCENARIOS / "paper000_unloaded.toml"), "--fmus", str(fmu_dir),
+                     "--stop", "1.5e-3", "--out", str(out), "--no-progress"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["steps"] == 1500 and summary["algorithm"] == "stabilised"
+    assert summary["parameters"]["Contact"]["preload"] == 9200.0
+    assert {"results.csv", "time.png", "spectrum.png", "film.png", "envelope.png"} <= set(summary["files"])
+    data = np.genfromtxt(out / "results.csv", delimiter=",", names=True)
+    y = data["Bodyy"] - data["Bodyy"].mean()
     crossings = np.count_nonzero(np.diff(np.sign(y)) != 0)
-    frequency = crossings / 2 / rec.time[-1]
-    assert abs(frequency / 6590.0 - 1) < 0.1  # ~10 periods: coarse count, published 6590 Hz
-    assert np.all(np.isfinite(rec.columns["friction.F_friction"]))
-    assert np.all(rec.columns["friction.F_friction"] < 0)  # feed velocity is positive here
+    assert abs(crossings / 2 / data["time"][-1] / 6590.0 - 1) < 0.1  # ~10 periods, published 6590 Hz
+    assert np.all(data["FrictionF_friction"] < 0)  # the feed velocity is positive here
 
 
-def test_cli_demo_refuses_bad_step_before_any_work(tmp_path, capsys):
+def test_cli_verify_json_meets_the_accuracy_target_on_a_short_loaded_run(fmu_dir, capsys):
+    assert cli.main(["verify", str(SCENARIOS / "paper000_9000N_4500Hz.toml"), "--fmus", str(fmu_dir),
+                     "--stop", "2e-3", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert set(report) >= {"rms_error", "peak_error", "wall_time_cosim", "wall_time_reference"}
+    assert report["rms_error"]["Contact.F_upper"] < 0.01
+    assert "Body.y" in report["peak_error"]
+
+
+def test_cli_export_ssp_writes_a_package(fmu_dir, tmp_path, capsys):
+    out = tmp_path / "case.ssp"
+    assert cli.main(["export-ssp", str(SCENARIOS / "paper000_9000N_4500Hz_dry.toml"),
+                     "--fmus", str(fmu_dir), str(out)]) == 0
+    assert zipfile.is_zipfile(out)
+    assert "resources/ContactDryHertz.fmu" in zipfile.ZipFile(out).namelist()
+
+
+def test_cli_run_bad_scenario_is_a_clear_error(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[experiment]\nstop = 1.0\n")
+    assert cli.main(["run", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "bad.toml" in err and "components" in err and "Traceback" not in err
+
+
+def test_demo_main_job_end_to_end(tmp_path):
+    summary = demo.run_demo(tmp_path / "demo", tmp_path / "fmus", stop=2e-3, scenarios=SCENARIOS)
+    assert set(summary["runs"]) == set(demo.DEMO_SCENARIOS)
+    assert summary["verify"]["paper000_9000N_4500Hz"]["rms_error_Contact.F_upper"] < 0.01
+    assert (tmp_path / "demo" / "paper000_9000N_4500Hz_dry" / "spectrum.png").exists()
+
+
+def test_cli_demo_refuses_bad_stop_before_any_work(tmp_path, capsys):
     assert cli.main(["demo", "--out", str(tmp_path / "o"), "--fmus", str(tmp_path / "f"),
-                     "--step", "-1"]) == 2
-    assert "--step" in capsys.readouterr().err
+                     "--stop", "-1"]) == 2
+    assert "--stop" in capsys.readouterr().err
     assert not (tmp_path / "f").exists()

@@ -4,8 +4,10 @@
    contact FMUs: each point is a fresh initialisation at displacement y (the EHL film starts at
    its steady value), K the central difference of the FMU's F_contact over y; the dry FMU's
    K_contact output is checked against it.
-2. The unloaded rig (paper 000, "Unloaded case") as a co-simulation of FeedKinematics
-   (bi-harmonic feed), ContactEHL, VerticalDynamics and FrictionMixedEHL through fmpy.
+2. Three scenarios of orchestration/scenarios/ through the co-simulation master, shortened to
+   ``stop`` seconds: the unloaded rig (paper 000, with friction), 9000 N at 4500 Hz lubricated
+   and the same with dry contacts; results, plots and summary per run.
+3. ``guideway-fmu verify`` of the 9000 N / 4500 Hz run against the monolithic reference.
 """
 from __future__ import annotations
 
@@ -18,8 +20,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import build  # noqa: E402
-from .cosim import gauss_seidel  # noqa: E402
+from . import build, verify  # noqa: E402
+from .cosim import plots, run, system  # noqa: E402
 from .cosim.fmu_instance import FmuInstance  # noqa: E402
 from .physics import carriage, film, guideway  # noqa: E402
 
@@ -72,31 +74,6 @@ def stiffness_curves(fmu_dir: Path, y: np.ndarray, u: float = RIG_SPEED) -> dict
     return out
 
 
-def rig_run(fmu_dir: Path, stop: float, step: float):
-    """Unloaded rig of paper 000 through fmpy; returns the Recording."""
-    names = {"feed": "FeedKinematics", "contact": "ContactEHL",
-             "body": "VerticalDynamics", "friction": "FrictionMixedEHL"}
-    inst = {k: FmuInstance(fmu_dir / f"{v}.fmu", k) for k, v in names.items()}
-    C = gauss_seidel.Connection
-    connections = [C("feed", "u", "contact", "u"), C("feed", "u", "friction", "u"),
-                   C("body", "y", "contact", "y"), C("body", "y_dot", "contact", "y_dot"),
-                   *[C("contact", v, "body", v) for v in ("F_contact", "K_contact", "C_contact")],
-                   *[C("contact", v, "friction", v) for v in ("F_upper", "F_lower", "h_upper", "h_lower")]]
-    for name in ("feed", "body", "contact", "friction"):
-        for c in connections:
-            if c.target == name:
-                inst[name].set(c.input, inst[c.source].get(c.output))
-        inst[name].initialise(0.0)
-    record = ["feed.u", "body.y", "contact.F_upper", "contact.F_lower", "contact.h_upper",
-              "contact.K_contact", "friction.F_friction"]
-    try:
-        return gauss_seidel.run(inst, connections, ["feed", "contact", "body", "friction"],
-                                0.0, stop, step, record)
-    finally:
-        for i in inst.values():
-            i.close()
-
-
 def _plot_stiffness(curves, path: Path) -> None:
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     for ax, label, fig_no in zip(axes, ("lubricated", "dry"), (3, 4)):
@@ -108,47 +85,43 @@ def _plot_stiffness(curves, path: Path) -> None:
     plt.close(fig)
 
 
-def _plot_run(rec, path: Path) -> None:
-    signals = [("body.y", 1e6, "y [um]"), ("contact.F_upper", 1, "F_upper [N]"),
-               ("contact.h_upper", 1e6, "h_upper [um]"), ("friction.F_friction", 1, "friction [N]")]
-    fig, axes = plt.subplots(len(signals) + 1, 1, figsize=(8, 10))
-    for ax, (name, scale, label) in zip(axes, signals):
-        ax.plot(rec.time * 1e3, rec.columns[name] * scale)
-        ax.set(ylabel=label)
-    axes[-2].set_xlabel("t [ms]")
-    y = rec.columns["body.y"] - rec.columns["body.y"].mean()
-    freq = np.fft.rfftfreq(len(y), rec.time[1] - rec.time[0])
-    axes[-1].semilogy(freq, np.abs(np.fft.rfft(y)) / len(y) * 2 + 1e-18)
-    axes[-1].set(xlabel="f [Hz] (paper 000 Fig. 14)", ylabel="|Y| [m]", xlim=(0, 2e4))
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+DEMO_SCENARIOS = ("paper000_unloaded", "paper000_9000N_4500Hz", "paper000_9000N_4500Hz_dry")
+VERIFIED = "paper000_9000N_4500Hz"
 
 
-def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02, step: float = 5e-6) -> dict:
-    """Build, compute, plot and write everything under ``out_dir``; returns the summary."""
+def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02,
+             scenarios: Path = Path("orchestration/scenarios")) -> dict:
+    """Build the FMUs, draw the stiffness curves, run three paper scenarios for ``stop`` seconds
+    each (results, plots) and verify one against the monolithic reference; returns the summary."""
     out_dir.mkdir(parents=True, exist_ok=True)
     build.build(fmu_dir)
     curves = stiffness_curves(fmu_dir, np.linspace(-5e-6, 5e-6, 101))
-    stiff_csv = out_dir / "stiffness.csv"
-    np.savetxt(stiff_csv, np.column_stack(list(curves.values())), delimiter=",",
+    np.savetxt(out_dir / "stiffness.csv", np.column_stack(list(curves.values())), delimiter=",",
                header=",".join(curves), comments="")
     _plot_stiffness(curves, out_dir / "stiffness.png")
-    rec = rig_run(fmu_dir, stop, step)
-    rec.write_csv(out_dir / "rig_unloaded.csv")
-    _plot_run(rec, out_dir / "rig_unloaded.png")
-    y = rec.columns["body.y"] - rec.columns["body.y"].mean()
-    freq = np.fft.rfftfreq(len(y), step)
-    spectrum = np.abs(np.fft.rfft(y))
-    band = freq > 1000.0
     summary = {
         "stiffness_at_y0_lubricated_N_per_m": float(np.interp(0.0, curves["y"], curves["K_lubricated"])),
         "stiffness_at_y0_dry_N_per_m": float(np.interp(0.0, curves["y"], curves["K_dry"])),
-        "rig_run": {"stop_s": stop, "step_s": step,
-                    "dominant_frequency_above_1kHz_Hz": float(freq[band][np.argmax(spectrum[band])]),
-                    "h_upper_range_m": [float(rec.columns["contact.h_upper"].min()),
-                                        float(rec.columns["contact.h_upper"].max())]},
-        "files": sorted(p.name for p in out_dir.iterdir()),
+        "runs": {},
     }
+    for name in DEMO_SCENARIOS:
+        scenario = system.load(scenarios / f"{name}.toml", fmu_dir).with_changes(stop=stop)
+        result = run.run(scenario, out_dir / name, progress=False)
+        rec = result.recording
+        freq, amp = plots.spectrum(rec.time, rec.columns["Body.y"])
+        band = freq > 1000.0
+        summary["runs"][name] = {
+            "steps": result.steps, "wall_time_s": result.wall_time,
+            "dominant_frequency_above_1kHz_Hz": float(freq[band][np.argmax(amp[band])]),
+            "F_upper_range_N": [float(rec.columns["Contact.F_upper"].min()),
+                                float(rec.columns["Contact.F_upper"].max())],
+            "h_upper_range_m": [float(rec.columns["Contact.h_upper"].min()),
+                                float(rec.columns["Contact.h_upper"].max())]}
+    report = verify.verify(system.load(scenarios / f"{VERIFIED}.toml", fmu_dir).with_changes(stop=stop))
+    (out_dir / "verify.json").write_text(json.dumps(report, indent=2))
+    summary["verify"] = {VERIFIED: {"rms_error_Contact.F_upper": report["rms_error"]["Contact.F_upper"],
+                                    "wall_time_cosim_s": report["wall_time_cosim"],
+                                    "wall_time_reference_s": report["wall_time_reference"]}}
+    summary["files"] = sorted(str(p.relative_to(out_dir)) for p in out_dir.rglob("*") if p.is_file())
     (out_dir / "summary.json").write_text(json.dumps(summary, indent=2))
     return summary

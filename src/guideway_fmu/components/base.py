@@ -40,6 +40,7 @@ class GuidewaySlave(Fmi2Slave):
         super().__init__(**kwargs)
         self._units: dict[str, str] = {}
         self._non_negative: list[str] = []
+        self._inputs: list[str] = []
         self._depends: dict[str, tuple[str, ...]] = {}
         self._outputs: dict[str, float] | None = None
         self._last_valid: dict[str, float] = {}
@@ -61,6 +62,7 @@ class GuidewaySlave(Fmi2Slave):
               non_negative: bool = False) -> None:
         """A Real input; ``non_negative`` inputs are refused below zero."""
         setattr(self, name, float(start))
+        self._inputs.append(name)
         if non_negative:
             self._non_negative.append(name)
         self.register_variable(Real(
@@ -84,6 +86,10 @@ class GuidewaySlave(Fmi2Slave):
         if parameter:
             self._model = None
 
+    def parameter_values(self) -> dict:
+        """The current parameters by name: the keywords of the physics' ``from_parameters``."""
+        return {name: getattr(self, name) for name in self._variables_of(Fmi2Causality.parameter)}
+
     # -- to be provided by the components -----------------------------------------------
     @abstractmethod
     def build_model(self):
@@ -91,7 +97,7 @@ class GuidewaySlave(Fmi2Slave):
 
     def check_inputs(self) -> None:
         """Raise ValueError naming the first input that is non-finite or out of range."""
-        for name in self._variables_of(Fmi2Causality.input):
+        for name in self._inputs:
             value = getattr(self, name)
             if not math.isfinite(value):
                 raise ValueError(f"input {name} must be finite, got {value!r}")

@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import math
 
-from ..physics import checks, film, guideway, roller_contact
+from ..physics import film, guideway
 from .base import GuidewaySlave
 
 _FEEDTHROUGH = ("y", "y_dot", "u")
-_MICRON = 1e-6
 FILM_SUBSTEP = 13.2  # largest Heun substep of the film integration, in units of h / |u|
+FILM_FLOOR = 1e-9  # m, films below this size the substeps as if they were this thick
 
 
 class _RollerContact(GuidewaySlave):
@@ -37,16 +37,8 @@ class _RollerContact(GuidewaySlave):
         self.output("K_contact", "N/m", "tangent stiffness dF_contact/dy", _FEEDTHROUGH)
         self.output("C_contact", "N.s/m", "tangent damping dF_contact/dy_dot", _FEEDTHROUGH)
 
-    def _guideway(self, **contact):
-        checks.non_negative("roller_load_1um", self.roller_load_1um)
-        checks.non_negative("damping", self.damping)
-        k = self.roller_load_1um / _MICRON ** roller_contact.EXPONENT
-        g = guideway.Guideway(
-            rollers_per_groove=self.rollers_per_groove, contact_angle=self.contact_angle,
-            preload=self.preload, stiffness=k,
-            contact=film.LineContact(radius=self.roller_radius, length=self.roller_length, **contact))
-        g.validate()
-        return g, guideway.RowKernel(g)
+    def build_model(self):
+        return guideway.from_parameters(**self.parameter_values())
 
     def _pack(self, force, f_u, f_l, h_u, h_l, stiffness):
         return {"F_contact": float(force + self.damping * self.y_dot),
@@ -59,9 +51,6 @@ class ContactDryHertz(_RollerContact):
     """Dry roller contacts F = k delta^(10/9) with preload; no film. Algebraic, no state."""
 
     description = __doc__.splitlines()[0]
-
-    def build_model(self):
-        return self._guideway()
 
     def evaluate(self):
         force, k, f_u, f_l = self.model()[1].contact(self.y, 0.0, 0.0)
@@ -92,10 +81,6 @@ class ContactEHL(_RollerContact):
         self.parameter("film_model", c.model, None, f"film law, one of {film.FILM_MODELS}")
         self.films = [0.0, 0.0]
 
-    def build_model(self):
-        return self._guideway(e_reduced=self.e_reduced, viscosity=self.viscosity,
-                              pressure_viscosity=self.pressure_viscosity, model=self.film_model)
-
     def _extrapolated(self):
         return self.model()[0].contact.model == "extrapolated"
 
@@ -109,14 +94,14 @@ class ContactEHL(_RollerContact):
         rates = self.model()[1].film_rates
         y0, v, u = self.y, self.y_dot, self.u
         hu, hl = self.films
-        n = max(1, math.ceil(h * abs(u) / (FILM_SUBSTEP * min(hu, hl))))
+        n = max(1, math.ceil(h * abs(u) / (FILM_SUBSTEP * max(min(hu, hl), FILM_FLOOR))))
         dt = h / n
         for i in range(n):
             y = y0 + v * i * dt
             ru, rl = rates(y, hu, hl, u)
             pu, pl = rates(y + v * dt, hu + dt * ru, hl + dt * rl, u)
             hu, hl = hu + 0.5 * dt * (ru + pu), hl + 0.5 * dt * (rl + pl)
-        if not (hu > 0.0 and hl > 0.0):
+        if not (hu >= 0.0 and hl >= 0.0):
             raise RuntimeError(f"film integration lost the film (h_upper {hu}, h_lower {hl} m)")
         self.films = [hu, hl]
 

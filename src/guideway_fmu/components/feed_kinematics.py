@@ -4,8 +4,6 @@ from __future__ import annotations
 from ..physics import feed_profiles as fp
 from .base import GuidewaySlave
 
-PROFILES = ("biharmonic", "oscillating", "constant", "trapezoid", "table", "input")
-
 
 class FeedKinematics(GuidewaySlave):
     """Feed position, velocity and acceleration from a chosen profile or from the u_cmd input.
@@ -21,7 +19,7 @@ class FeedKinematics(GuidewaySlave):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         bi, osc, tr = fp.BiHarmonic(), fp.Oscillating(), fp.Trapezoid()
-        self.parameter("profile", "biharmonic", None, f"feed profile, one of {PROFILES}")
+        self.parameter("profile", "biharmonic", None, f"feed profile, one of {fp.PROFILES}")
         self.parameter("frequency", bi.frequency, "Hz", "feed frequency f (biharmonic, oscillating)")
         self.parameter("amplitude1", bi.amplitude1, "m/s", "biharmonic: amplitude A1 at f (eq. 1a)")
         self.parameter("amplitude2", bi.amplitude2, "m/s", "biharmonic: amplitude A2 at 3f (eq. 1a)")
@@ -43,32 +41,7 @@ class FeedKinematics(GuidewaySlave):
         self.time, self.x_input, self.u_previous, self.a_input = 0.0, 0.0, 0.0, 0.0
 
     def build_model(self):
-        name = self.profile.strip().lower()
-        if name == "input":
-            return None
-        if name == "table":
-            return self._table()
-        params = {
-            "biharmonic": dict(amplitude1=self.amplitude1, amplitude2=self.amplitude2,
-                               phase1=self.phase1, phase2=self.phase2, frequency=self.frequency),
-            "oscillating": dict(mean=self.mean_velocity, amplitude=self.oscillation_amplitude,
-                                frequency=self.frequency),
-            "constant": dict(velocity=self.velocity),
-            "trapezoid": dict(distance=self.distance, v_max=self.v_max, a_max=self.a_max,
-                              t_start=self.t_start),
-        }.get(name)
-        if params is None:
-            raise ValueError(f"parameter profile must be one of {PROFILES}, got {self.profile!r}")
-        return fp.make_profile(name, **params)
-
-    def _table(self):
-        if not self.table_file:
-            raise ValueError("parameter table_file must name a CSV file when profile is 'table'")
-        try:
-            return fp.Table.from_csv(self.table_file)
-        except OSError as exc:
-            raise ValueError(f"parameter table_file: cannot read {self.table_file!r}: "
-                             f"{exc.strerror or exc}") from exc
+        return fp.from_parameters(**self.parameter_values())
 
     def setup_experiment(self, start_time, stop_time, tolerance):
         self.time = start_time

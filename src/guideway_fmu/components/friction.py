@@ -46,17 +46,7 @@ class FrictionMixedEHL(_Friction):
         self.output("F_viscous", "N", "viscous (film shear) part of F_friction", self._PARTS)
 
     def build_model(self):
-        params = friction.MixedFrictionParams(
-            surface=greenwood_tripp.Surface(
-                asperity_density=self.asperity_density, asperity_radius=self.asperity_radius,
-                roughness=self.roughness, e_reduced=self.e_reduced),
-            roller_radius=self.roller_radius, roller_length=self.roller_length,
-            rollers_per_groove=self.rollers_per_groove, viscosity=self.viscosity,
-            limiting_shear_stress=self.limiting_shear_stress,
-            limiting_shear_slope=self.limiting_shear_slope,
-            velocity_tolerance=self.velocity_tolerance)
-        params.validate()
-        return params
+        return friction.mixed_from_parameters(**self.parameter_values())
 
     def evaluate(self):
         total, boundary, viscous = friction.mixed_ehl_friction(
@@ -77,11 +67,7 @@ class FrictionCoulomb(_Friction):
                     ("F_upper", "F_lower", "u"))
 
     def build_model(self):
-        params = friction.CoulombParams(coefficient=self.coefficient,
-                                        rollers_per_groove=self.rollers_per_groove,
-                                        velocity_tolerance=self.velocity_tolerance)
-        params.validate()
-        return params
+        return friction.coulomb_from_parameters(**self.parameter_values())
 
     def evaluate(self):
         return {"F_friction": float(friction.coulomb_friction(self.F_upper, self.F_lower, self.u,

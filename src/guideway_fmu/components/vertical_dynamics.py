@@ -1,7 +1,7 @@
 """VerticalDynamics FMU: the moving body's vertical degree of freedom (paper 000, eq. 1b)."""
 from __future__ import annotations
 
-from ..physics import carriage, checks
+from ..physics import carriage
 from .base import GuidewaySlave
 
 
@@ -40,14 +40,7 @@ class VerticalDynamics(GuidewaySlave):
         self.y, self.y_dot, self.time = 0.0, 0.0, 0.0
 
     def build_model(self):
-        body = carriage.Body(mass=self.mass, gravity=self.gravity)
-        body.validate()
-        load = carriage.ExternalLoad(static=self.load_static, amplitude=self.load_amplitude,
-                                     frequency=self.load_frequency, phase=self.load_phase)
-        load.validate()
-        checks.finite("y_start", self.y_start)
-        checks.finite("y_dot_start", self.y_dot_start)
-        return body, load
+        return carriage.from_parameters(**self.parameter_values())
 
     def setup_experiment(self, start_time, stop_time, tolerance):
         self.time = start_time

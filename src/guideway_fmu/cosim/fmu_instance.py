@@ -1,18 +1,38 @@
-"""One FMI 2.0 co-simulation FMU instance driven through fmpy, with variables by name."""
+"""One FMI 2.0 co-simulation FMU instance driven through fmpy: variables by name, batched
+access for the master's inner loop, FMU state, the instance's log, and the time spent in FMI calls."""
 from __future__ import annotations
 
 import shutil
+import time
+from collections import deque
+from ctypes import byref
 from pathlib import Path
 
 from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import (FMU2Slave, fmi2Boolean, fmi2CallbackAllocateMemoryTYPE,
+                       fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE,
+                       fmi2FMUstate, fmi2Integer, fmi2Real, fmi2ValueReference)
+from fmpy.fmi2 import calloc, free
+from fmpy.logging import addLoggerProxy
 
-_SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean", "String": "setString"}
-_GETTERS = {"Real": "getReal", "Integer": "getInteger", "Boolean": "getBoolean", "String": "getString"}
+_CTYPES = {"Real": fmi2Real, "Integer": fmi2Integer, "Boolean": fmi2Boolean, "Enumeration": fmi2Integer}
+_STATUS = ["ok", "warning", "discard", "error", "fatal", "pending"]
+LOG_LINES = 50  # log messages kept per instance
+# Log messages by instance name. pythonfmu 0.7 sends every instance's messages to the logger of
+# the instance created last (with the right instance name), so they are routed by that name.
+_LOGS: dict[str, deque] = {}
+
+__all__ = ["FmuInstance", "FMICallException"]
 
 
 class FmuInstance:
-    """An instantiated FMU (any FMI 2.0 CS FMU, not only ours) with name-based get/set."""
+    """An instantiated FMU (any FMI 2.0 CS FMU, not only ours).
+
+    ``fmi_time`` [s] accumulates the wall time spent inside the batched calls, ``do_step`` and
+    the state calls, so that a master can tell its own overhead from the FMUs' cost. ``log``
+    holds the last LOG_LINES messages the FMU sent (logging is switched on).
+    """
 
     def __init__(self, path: str | Path, name: str):
         self.path, self.name = Path(path), name
@@ -20,12 +40,32 @@ class FmuInstance:
             raise FileNotFoundError(f"{name}: FMU file {self.path} does not exist")
         self.description = read_model_description(str(self.path))
         self.variables = {v.name: v for v in self.description.modelVariables}
+        cs = self.description.coSimulation
+        self.can_get_set_state = bool(cs.canGetAndSetFMUstate)
+        self.log: deque[str] = deque(maxlen=LOG_LINES)
+        _LOGS[name] = self.log
+        self.fmi_time = 0.0
         self._unzip = extract(str(self.path))
         self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=self._unzip,
-                             modelIdentifier=self.description.coSimulation.modelIdentifier,
-                             instanceName=name)
-        self.fmu.instantiate()
+                             modelIdentifier=cs.modelIdentifier, instanceName=name)
+        self._callbacks = fmi2CallbackFunctions()
+        self._callbacks.logger = fmi2CallbackLoggerTYPE(self._on_log)
+        self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        addLoggerProxy(byref(self._callbacks))
+        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=True)
 
+    @staticmethod
+    def _on_log(env, instance, status, category, message):
+        label = _STATUS[status] if 0 <= status < len(_STATUS) else str(status)
+        name = (instance or b"").decode("utf-8", "replace")
+        _LOGS.setdefault(name, deque(maxlen=LOG_LINES)).append(
+            f"[{label}] {message.decode('utf-8', 'replace')}")
+
+    def log_text(self) -> str:
+        return "\n".join(self.log) or "(the FMU logged nothing)"
+
+    # -- by name ---------------------------------------------------------------------------
     def variable(self, name: str):
         if name not in self.variables:
             raise KeyError(f"{self.name}: FMU {self.path.name} has no variable {name!r}")
@@ -36,14 +76,84 @@ class FmuInstance:
 
     def set(self, name: str, value) -> None:
         v = self.variable(name)
-        getattr(self.fmu, _SETTERS[v.type])([v.valueReference], [value])
+        if v.type == "String":
+            self.fmu.setString([v.valueReference], [str(value)])
+        else:
+            self.writer([name])([value])
 
     def get(self, name: str):
         v = self.variable(name)
-        return getattr(self.fmu, _GETTERS[v.type])([v.valueReference])[0]
+        if v.type == "String":
+            return self.fmu.getString([v.valueReference])[0]
+        return self.reader([name])()[0]
 
-    def initialise(self, start_time: float, parameters: dict | None = None) -> None:
-        self.fmu.setupExperiment(startTime=start_time)
+    # -- batched access for the master ------------------------------------------------------
+    def _batch(self, names, setter: bool):
+        types = {self.variable(n).type for n in names}
+        if len(types) != 1 or not types <= set(_CTYPES):
+            raise ValueError(f"{self.name}: a batch needs variables of one type among "
+                             f"{sorted(_CTYPES)}, got {sorted(types)} for {list(names)}")
+        kind = types.pop()
+        n = len(names)
+        vrs = (fmi2ValueReference * n)(*[self.variable(x).valueReference for x in names])
+        values = (_CTYPES[kind] * n)()
+        prefix = "fmi2Set" if setter else "fmi2Get"
+        call = getattr(self.fmu, prefix + ("Integer" if kind == "Enumeration" else kind))
+        return self.fmu.component, call, vrs, values, n
+
+    def reader(self, names):
+        """A function returning the current values of ``names`` (one type) as a list, one FMI call."""
+        comp, call, vrs, values, n = self._batch(names, setter=False)
+        clock = time.perf_counter
+
+        def read():
+            t0 = clock()
+            call(comp, vrs, n, values)
+            self.fmi_time += clock() - t0
+            return values[:]
+        return read
+
+    def writer(self, names):
+        """A function setting ``names`` (one type) from a sequence of values, one FMI call."""
+        comp, call, vrs, values, n = self._batch(names, setter=True)
+        clock = time.perf_counter
+
+        def write(new):
+            values[:] = new
+            t0 = clock()
+            call(comp, vrs, n, values)
+            self.fmi_time += clock() - t0
+        return write
+
+    def do_step(self, t: float, h: float) -> None:
+        """fmi2DoStep; raises FMICallException on discard, error or fatal."""
+        t0 = time.perf_counter()
+        try:
+            self.fmu.fmi2DoStep(self.fmu.component, t, h, 0)
+        finally:
+            self.fmi_time += time.perf_counter() - t0
+
+    def get_state(self):
+        """Save the FMU state; free it with :meth:`free_state`."""
+        t0 = time.perf_counter()
+        state = fmi2FMUstate()
+        self.fmu.fmi2GetFMUstate(self.fmu.component, byref(state))
+        self.fmi_time += time.perf_counter() - t0
+        return state
+
+    def set_state(self, state) -> None:
+        t0 = time.perf_counter()
+        self.fmu.fmi2SetFMUstate(self.fmu.component, state)
+        self.fmi_time += time.perf_counter() - t0
+
+    def free_state(self, state) -> None:
+        t0 = time.perf_counter()
+        self.fmu.fmi2FreeFMUstate(self.fmu.component, byref(state))
+        self.fmi_time += time.perf_counter() - t0
+
+    # -- life cycle ------------------------------------------------------------------------
+    def initialise(self, start_time: float, parameters: dict | None = None, stop_time=None) -> None:
+        self.fmu.setupExperiment(startTime=start_time, stopTime=stop_time)
         self.fmu.enterInitializationMode()
         for key, value in (parameters or {}).items():
             self.set(key, value)
@@ -51,7 +161,9 @@ class FmuInstance:
 
     def close(self) -> None:
         """Terminate and free the instance, unload it and delete its extracted files."""
-        self.fmu.terminate()
+        try:
+            self.fmu.terminate()
+        except FMICallException:
+            pass  # an instance that failed may refuse to terminate; free it all the same
         self.fmu.freeInstance()
-        self.fmu.freeLibrary()
         shutil.rmtree(self._unzip, ignore_errors=True)

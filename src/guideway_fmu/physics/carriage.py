@@ -50,12 +50,29 @@ class ExternalLoad:
         return self.static + self.amplitude * math.sin(2.0 * math.pi * self.frequency * t + self.phase)
 
 
+def from_parameters(mass, gravity, load_static, load_amplitude, load_frequency, load_phase,
+                    y_start, y_dot_start):
+    """The validated (Body, ExternalLoad) of the VerticalDynamics FMU's parameters
+    (fmus/README.md); y_start [m] and y_dot_start [m/s], the caller's initial state, are only
+    checked (finite). Raises ValueError naming the parameter that is wrong.
+    """
+    body = Body(mass=mass, gravity=gravity)
+    body.validate()
+    load = ExternalLoad(static=load_static, amplitude=load_amplitude, frequency=load_frequency,
+                        phase=load_phase)
+    load.validate()
+    checks.finite("y_start", y_start)
+    checks.finite("y_dot_start", y_dot_start)
+    return body, load
+
+
 def step(body: Body, y: float, v: float, h: float, f_in: float, f_contact: float,
          k_contact: float = 0.0, c_contact: float = 0.0, t: float = 0.0,
          load: ExternalLoad | None = None):
     """Advance (y [m], v [m/s]) from time t [s] by the step h [s]; returns (y, v, a) at t + h."""
-    checks.non_negative("k_contact", k_contact)
-    checks.non_negative("c_contact", c_contact)
+    for name, value in (("k_contact", k_contact), ("c_contact", c_contact)):
+        if not 0.0 <= value < math.inf:
+            raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
     m = body.mass
     kk, cc = k_contact / m, c_contact / m
     # y'' = b + F_e(t)/M - kk y - cc y' with everything held over the step folded into b.

@@ -3,15 +3,19 @@
 Each profile is a frozen dataclass whose ``evaluate(t)`` returns position x [m],
 velocity u [m/s] and acceleration a [m/s^2] at the time(s) t [s], analytically:
 x is the exact integral of u with x(0) = 0 and a is the exact derivative of u.
-Arrays in give arrays of the same shape out, a scalar gives floats. Profiles check
-their fields on construction (``validate``), so an invalid profile cannot exist.
+Arrays in give arrays of the same shape out, a scalar gives floats. ``velocity_at(t)``
+is u alone for one float t, in plain floats (0.1 to 4 us against 3 to 60 for ``evaluate``),
+for integrators that call it at every step. Profiles check their fields on construction
+(``validate``), so an invalid profile cannot exist.
 
 Reference: Soleimanian, Mohammadpour, Ahmadian (2020), eq. (1a), eq. (33), Table 1.
 """
 from __future__ import annotations
 
+import bisect
 import csv
 import inspect
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -22,8 +26,11 @@ from . import checks
 
 __all__ = [
     "FeedProfile", "BiHarmonic", "Oscillating", "Constant", "Trapezoid", "Table",
-    "make_profile",
+    "make_profile", "from_parameters", "PROFILES",
 ]
+
+#: profile names of the FeedKinematics FMU; "input" takes the velocity from an input instead
+PROFILES = ("biharmonic", "oscillating", "constant", "trapezoid", "table", "input")
 
 
 class FeedProfile:
@@ -81,6 +88,12 @@ class BiHarmonic(FeedProfile):
         third = _sine(t, self.amplitude2, 3.0 * omega, self.phase2)
         return _result(t, *(p + q for p, q in zip(first, third)))
 
+    def velocity_at(self, t: float) -> float:
+        """u [m/s] at the time t [s] (float)."""
+        arg = 2.0 * math.pi * self.frequency * t
+        return (self.amplitude1 * math.sin(arg + self.phase1)
+                + self.amplitude2 * math.sin(3.0 * arg + self.phase2))
+
 
 @dataclass(frozen=True)
 class Oscillating(FeedProfile):
@@ -104,6 +117,10 @@ class Oscillating(FeedProfile):
         x, u, a = _sine(t, -self.amplitude, 2.0 * np.pi * self.frequency, 0.0)
         return _result(t, self.mean * t + x, self.mean + u, a)
 
+    def velocity_at(self, t: float) -> float:
+        """u [m/s] at the time t [s] (float)."""
+        return self.mean - self.amplitude * math.sin(2.0 * math.pi * self.frequency * t)
+
 
 @dataclass(frozen=True)
 class Constant(FeedProfile):
@@ -117,6 +134,10 @@ class Constant(FeedProfile):
     def evaluate(self, t):
         t = np.asarray(t, dtype=float)
         return _result(t, self.velocity * t, self.velocity, 0.0)
+
+    def velocity_at(self, t: float) -> float:
+        """u [m/s] at the time t [s] (float)."""
+        return self.velocity
 
 
 @dataclass(frozen=True)
@@ -142,7 +163,7 @@ class Trapezoid(FeedProfile):
     @property
     def peak_velocity(self) -> float:
         """Highest speed reached [m/s] (magnitude)."""
-        return min(self.v_max, float(np.sqrt(abs(self.distance) * self.a_max)))
+        return min(self.v_max, math.sqrt(abs(self.distance) * self.a_max))
 
     @property
     def ramp_time(self) -> float:
@@ -171,6 +192,14 @@ class Trapezoid(FeedProfile):
         a = np.where(moving & accelerating, acc, np.where(moving & decelerating, -acc, 0.0))
         sign = np.sign(self.distance)
         return _result(t, sign * x, sign * u, sign * a)
+
+    def velocity_at(self, t: float) -> float:
+        """u [m/s] at the time t [s] (float)."""
+        tau, end = t - self.t_start, self.duration
+        if not 0.0 <= tau < end:
+            return 0.0
+        speed = min(self.a_max * tau, self.a_max * (end - tau), self.peak_velocity)
+        return math.copysign(speed, self.distance)
 
 
 def _table_problem(time: np.ndarray, velocity: np.ndarray):
@@ -244,6 +273,16 @@ class Table(FeedProfile):
         a = np.where((t >= time[0]) & (t < time[-1]), slope[k], 0.0)
         return _result(t, x, u, a)
 
+    def velocity_at(self, t: float) -> float:
+        """u [m/s] at the time t [s] (float)."""
+        time, velocity = self.time, self.velocity
+        if t <= time[0]:
+            return velocity[0]
+        if t >= time[-1]:
+            return velocity[-1]
+        k = bisect.bisect_right(time, t) - 1
+        return velocity[k] + (velocity[k + 1] - velocity[k]) * (t - time[k]) / (time[k + 1] - time[k])
+
     @classmethod
     def from_csv(cls, path) -> "Table":
         """Read a comma-separated file whose header names ``time`` [s] and
@@ -311,3 +350,34 @@ def make_profile(name: str, **params) -> FeedProfile:
         raise ValueError(f"unknown parameter {unknown[0]!r} for feed profile {key!r}; "
                          f"valid parameters: {', '.join(allowed)}")
     return factory(**params)
+
+
+def from_parameters(profile, frequency, amplitude1, amplitude2, phase1, phase2, mean_velocity,
+                    oscillation_amplitude, velocity, distance, v_max, a_max, t_start, table_file):
+    """The profile that the FeedKinematics FMU's parameters select (names and units:
+    fmus/README.md), or None for "input" (no profile: the velocity is an input).
+
+    Raises ValueError naming the parameter that is wrong.
+    """
+    name = profile.strip().lower()
+    if name == "input":
+        return None
+    if name == "table":
+        if not table_file:
+            raise ValueError("parameter table_file must name a CSV file when profile is 'table'")
+        try:
+            return Table.from_csv(table_file)
+        except OSError as exc:
+            raise ValueError(f"parameter table_file: cannot read {table_file!r}: "
+                             f"{exc.strerror or exc}") from exc
+    params = {
+        "biharmonic": dict(amplitude1=amplitude1, amplitude2=amplitude2, phase1=phase1,
+                           phase2=phase2, frequency=frequency),
+        "oscillating": dict(mean=mean_velocity, amplitude=oscillation_amplitude,
+                            frequency=frequency),
+        "constant": dict(velocity=velocity),
+        "trapezoid": dict(distance=distance, v_max=v_max, a_max=a_max, t_start=t_start),
+    }.get(name)
+    if params is None:
+        raise ValueError(f"parameter profile must be one of {PROFILES}, got {profile!r}")
+    return make_profile(name, **params)

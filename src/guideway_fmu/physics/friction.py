@@ -77,6 +77,21 @@ def _contact(load, h, u, p: MixedFrictionParams):
     return boundary, viscous
 
 
+def mixed_from_parameters(rollers_per_groove, velocity_tolerance, asperity_density,
+                          asperity_radius, roughness, e_reduced, roller_radius, roller_length,
+                          viscosity, limiting_shear_stress, limiting_shear_slope):
+    """The validated MixedFrictionParams of the FrictionMixedEHL FMU's parameters (fmus/README.md)."""
+    params = MixedFrictionParams(
+        surface=gt.Surface(asperity_density=asperity_density, asperity_radius=asperity_radius,
+                           roughness=roughness, e_reduced=e_reduced),
+        roller_radius=roller_radius, roller_length=roller_length,
+        rollers_per_groove=rollers_per_groove, viscosity=viscosity,
+        limiting_shear_stress=limiting_shear_stress, limiting_shear_slope=limiting_shear_slope,
+        velocity_tolerance=velocity_tolerance)
+    params.validate()
+    return params
+
+
 def contact_friction(load, h, u, params: MixedFrictionParams):
     """Boundary and viscous friction magnitudes (F_b, F_v) >= 0 [N] of one roller contact.
 
@@ -140,6 +155,14 @@ class CoulombParams:
                 "velocity_tolerance": checks.non_negative,
             },
         )
+
+
+def coulomb_from_parameters(rollers_per_groove, velocity_tolerance, coefficient):
+    """The validated CoulombParams of the FrictionCoulomb FMU's parameters (fmus/README.md)."""
+    params = CoulombParams(coefficient=coefficient, rollers_per_groove=rollers_per_groove,
+                           velocity_tolerance=velocity_tolerance)
+    params.validate()
+    return params
 
 
 def coulomb_friction(F_upper, F_lower, u, params: CoulombParams):

@@ -31,8 +31,10 @@ import numpy as np
 from . import checks
 from .film import (S_MAX, S_MIN, SQUEEZE_GAIN, SQUEEZE_WEIGHT, LineContact, film_law, film_rate,
                    speed_exponent, squeeze_factor, steady_film, unsqueezed_film)
-from .roller_contact import (approach_for_load, contact_force, contact_stiffness,
+from .roller_contact import (EXPONENT, approach_for_load, contact_force, contact_stiffness,
                              palmgren_stiffness)
+
+MICRON = 1e-6  # m, the approach at which the FMU parameter roller_load_1um gives the load
 
 
 @dataclass(frozen=True)
@@ -229,3 +231,26 @@ class RowKernel:
         fu, fl = self.loads(y, h_upper, h_lower)
         speed = abs(u)
         return self.film_rate(h_upper, fu, speed), self.film_rate(h_lower, fl, speed)
+
+
+def from_parameters(rollers_per_groove, contact_angle, preload, roller_radius, roller_length,
+                    roller_load_1um, damping, e_reduced=LineContact.e_reduced,
+                    viscosity=LineContact.viscosity,
+                    pressure_viscosity=LineContact.pressure_viscosity,
+                    film_model=LineContact.model):
+    """The validated (Guideway, RowKernel) of the contact FMUs' parameters (fmus/README.md).
+
+    roller_load_1um [N] is k (1e-6 m)^(10/9), 0 for Palmgren's k. The dry contact has no
+    lubricant parameters (e_reduced [Pa], viscosity [Pa s], pressure_viscosity [1/Pa],
+    film_model): their defaults. damping [N s/m] is only checked (>= 0): the caller adds
+    damping * y_dot to the net force. Raises ValueError naming the parameter that is wrong.
+    """
+    checks.non_negative("roller_load_1um", roller_load_1um)
+    checks.non_negative("damping", damping)
+    g = Guideway(rollers_per_groove=rollers_per_groove, contact_angle=contact_angle,
+                 preload=preload, stiffness=roller_load_1um / MICRON ** EXPONENT,
+                 contact=LineContact(radius=roller_radius, length=roller_length,
+                                     e_reduced=e_reduced, viscosity=viscosity,
+                                     pressure_viscosity=pressure_viscosity, model=film_model))
+    g.validate()
+    return g, RowKernel(g)

@@ -1,0 +1,250 @@
+"""The co-simulation master: instantiate a system's FMUs, step them with an algorithm, record.
+
+``simulate(system)`` is the whole run; the pieces follow libcosim's split: the :class:`Bus`
+moves values between instances (execution), algorithms.py decides how steps are taken, the
+Recorder (recording.py) observes. The master talks to FMUs only through FMI (fmpy), so it runs
+FMUs this project did not build (Real, Integer, Boolean and Enumeration connections).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from fmpy.fmi1 import FMICallException
+from tqdm import tqdm
+
+from .algorithms import ALGORITHMS, order, tangent_links
+from .fmu_instance import FmuInstance
+from .recording import Recorder, Recording
+from .system import System
+
+PROGRESS_EVERY = 2000  # macro steps between progress-bar updates
+
+
+@dataclass
+class Result:
+    """What a run produced; ``error`` is set (and the recording partial) when it failed."""
+
+    system: str
+    algorithm: str
+    recording: Recording
+    parameters: dict
+    steps: int = 0
+    rejected: int = 0
+    wall_time: float = 0.0  # s, the stepping loop
+    fmi_time: float = 0.0  # s, inside FMI calls during the loop
+    error: str | None = None
+    stats: dict = field(default_factory=dict)
+
+    def summary(self) -> dict:
+        return {"scenario": self.system, "algorithm": self.algorithm,
+                "parameters": self.parameters, "steps": self.steps, "rejected": self.rejected,
+                "wall_time_s": self.wall_time, "fmi_call_time_s": self.fmi_time,
+                "master_overhead_s": self.wall_time - self.fmi_time,
+                "time_span_s": [float(self.recording.time[0]), float(self.recording.time[-1])]
+                if len(self.recording.time) else [], "error": self.error, **self.stats}
+
+
+class SimulationError(RuntimeError):
+    """A run that stopped; ``result`` holds what was recorded until then."""
+
+    def __init__(self, message: str, result: Result):
+        super().__init__(message)
+        self.result = result
+
+
+class Bus:
+    """The instances of a system and the latest value of every exchanged or recorded variable,
+    ``values[(instance, variable)]``; batched reads and writes, one FMI call per type.
+
+    ``exchanged`` variables are read after every step of their instance, ``observed`` ones
+    (recorded only) when :meth:`observe` is called, before a sample is recorded. ``links`` are
+    further (source key -> (instance, input)) feeds, such as the tangents of the stabilised
+    algorithm, written together with the connections.
+    """
+
+    def __init__(self, system: System, instances: dict[str, FmuInstance], exchanged: set,
+                 observed: set, links: dict | None = None):
+        self.system, self.instances, self.values = system, instances, {}
+        self._sources = {(c.target, c.input): (c.source, c.output) for c in system.connections}
+        feeds = {**self._sources, **{target: src for src, target in (links or {}).items()}}
+        self._reads, self._observe, self._writes = {}, {}, {}
+        for name, inst in instances.items():
+            self._reads[name] = self._readers(inst, exchanged)
+            self._observe[name] = self._readers(inst, observed - exchanged)
+            inputs = sorted(i for t, i in feeds if t == name)
+            self._writes[name] = [(inst.writer(group), [feeds[(name, i)] for i in group])
+                                  for group in _by_type(inst, inputs)]
+
+    @staticmethod
+    def _readers(inst: FmuInstance, keys: set):
+        mine = sorted(v for i, v in keys if i == inst.name)
+        return [(inst.reader(group), [(inst.name, v) for v in group])
+                for group in _by_type(inst, mine)]
+
+    def _read(self, groups) -> None:
+        values = self.values
+        for read, keys in groups:
+            for key, value in zip(keys, read()):
+                values[key] = value
+
+    def read_outputs(self, name: str) -> None:
+        self._read(self._reads[name])
+
+    def observe(self) -> None:
+        for groups in self._observe.values():
+            self._read(groups)
+
+    def write_inputs(self, name: str) -> None:
+        values = self.values
+        for write, sources in self._writes[name]:
+            write([values[s] for s in sources])
+
+    def do_step(self, name: str, t: float, h: float) -> None:
+        try:
+            self.instances[name].do_step(t, h)
+        except FMICallException as exc:
+            exc.instance, exc.time = name, t
+            raise
+
+    def connected_inputs(self):
+        return self._sources.items()
+
+    def source_of(self, instance: str, variable: str):
+        return self._sources.get((instance, variable))
+
+    def writer(self, instance: str, variable: str):
+        return self.instances[instance].writer([variable])
+
+    def can_roll_back(self) -> bool:
+        return all(i.can_get_set_state for i in self.instances.values())
+
+    def save(self):
+        return {n: i.get_state() for n, i in self.instances.items()}, dict(self.values)
+
+    def restore(self, saved) -> None:
+        states, values = saved
+        for n, s in states.items():
+            self.instances[n].set_state(s)
+        self.values = values.copy()
+
+    def free(self, saved) -> None:
+        for n, s in saved[0].items():
+            self.instances[n].free_state(s)
+
+    def fmi_time(self) -> float:
+        return sum(i.fmi_time for i in self.instances.values())
+
+
+def _by_type(inst: FmuInstance, names):
+    groups = {}
+    for n in names:
+        groups.setdefault(inst.variable(n).type, []).append(n)
+    return [g for t, g in groups.items() if t != "String"]
+
+
+def _recorded(system: System) -> list[str]:
+    if system.record:
+        return list(system.record)
+    return [f"{i}.{v}" for i, vs in system.variables.items()
+            for v, var in vs.items() if var.causality == "output" and var.type != "String"]
+
+
+def simulate(system: System, progress: bool = False) -> Result:
+    """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
+    an FMU fails a step that cannot be retried."""
+    exp = system.experiment
+    algorithm_class = ALGORITHMS[exp.algorithm]
+    record = _recorded(system)
+    observed = {tuple(r.split(".", 1)) for r in record}
+    exchanged = {(c.source, c.output) for c in system.connections}
+    links = tangent_links(system.tangents) if exp.algorithm == "stabilised" else {}
+    exchanged |= {src for src in links if src[1] in system.variables[src[0]]}
+    exchanged |= {(t.instance, t.force) for t in system.tangents}
+    instances: dict[str, FmuInstance] = {}
+    recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
+                        system.record_interval)
+    result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
+    try:
+        for name in order(system):  # initialise sources first: inputs at t0 from their outputs
+            comp = system.components[name]
+            instances[name] = FmuInstance(comp.fmu, name)
+        bus = Bus(system, instances, exchanged, observed, links)
+        for name in order(system):
+            inst = instances[name]
+            inst.fmu.setupExperiment(startTime=exp.start, stopTime=exp.stop)
+            inst.fmu.enterInitializationMode()
+            for key, value in system.components[name].parameters.items():
+                inst.set(key, value)
+            _write_available(bus, name)
+            inst.fmu.exitInitializationMode()
+            bus.read_outputs(name)
+        for name in instances:
+            bus.read_outputs(name)
+        bus.observe()
+        result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
+        algorithm = algorithm_class(bus, system)
+        row_keys = [tuple(r.split(".", 1)) for r in record]
+        recorder.sample(exp.start, [bus.values[k] for k in row_keys], force=True)
+        _run(exp, algorithm, bus, recorder, row_keys, result, progress)
+    except FMICallException as exc:
+        failing = getattr(exc, "instance", None)
+        logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
+                         if failing is None or n == failing)
+        result.error = (f"{system.name}: FMU instance {failing!r} failed at t = "
+                        f"{getattr(exc, 'time', float('nan')):.9g} s: {exc}\n{logs}")
+        result.recording = recorder.recording()
+        raise SimulationError(result.error, result) from exc
+    finally:
+        for inst in instances.values():
+            inst.close()
+    result.recording = recorder.recording()
+    return result
+
+
+def _write_available(bus: Bus, name: str) -> None:
+    """Initial inputs whose sources are initialised already (others keep their start values)."""
+    for (target, inp), src in bus.connected_inputs():
+        if target == name and src in bus.values:
+            bus.writer(name, inp)([bus.values[src]])
+
+
+def _run(exp, algorithm, bus, recorder, row_keys, result, progress) -> None:
+    t, h, span = exp.start, exp.step, exp.stop - exp.start
+    eps = 1e-9 * exp.step
+    fmi0, wall0 = bus.fmi_time(), time.perf_counter()
+    bar = tqdm(total=span, unit="s", disable=not progress, desc=result.system,
+               bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]")
+    steps = rejected = 0
+    try:
+        while t < exp.stop - eps:
+            h_try = min(h, exp.stop - t)
+            accepted, h_next = algorithm.step(t, h_try)
+            if not accepted:
+                rejected += 1
+                h = h_next
+                continue
+            steps += 1
+            t = exp.start + span if exp.stop - (t + h_try) <= eps else t + h_try
+            h = h_next if exp.tolerance > 0 else exp.step
+            if recorder.due(t) or t >= exp.stop - eps:
+                bus.observe()
+                recorder.sample(t, [bus.values[k] for k in row_keys], force=True)
+            if steps % PROGRESS_EVERY == 0:
+                bar.update(t - exp.start - bar.n)
+        bar.update(span - bar.n)
+    finally:
+        bar.close()
+        result.steps, result.rejected = steps, rejected
+        result.wall_time = time.perf_counter() - wall0
+        result.fmi_time = bus.fmi_time() - fmi0
+
+
+def _parameters(inst: FmuInstance) -> dict:
+    """Every parameter's value as the instance reports it after initialisation."""
+    return {n: inst.get(n) for n, v in inst.variables.items() if v.causality == "parameter"}
+
+
+def _empty(record):
+    return np.array([]), {r: np.array([]) for r in record}, {r: "" for r in record}

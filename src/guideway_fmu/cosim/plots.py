@@ -1,0 +1,206 @@
+"""Plots of a :class:`~guideway_fmu.cosim.recording.Recording`: time histories, amplitude
+spectra, film thickness and envelopes, one stacked axis per named column, written as PNG.
+
+Generic: it plots whatever columns it is told. Figures are drawn on matplotlib's Agg canvas
+directly, without pyplot: the caller's backend is left alone and no figure stays registered
+(nothing to close), so plotting many recordings does not accumulate memory.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+from .recording import Recording
+
+_RTOL_UNIFORM = 1e-6
+_KINDS = ("time", "spectrum", "film", "envelope")
+
+
+def _uniform_step(time: np.ndarray) -> float | None:
+    """The sampling step [s] if ``time`` is uniformly sampled (relative tolerance 1e-6), else None."""
+    dt = np.diff(time)
+    step = dt.mean() if dt.size else 0.0
+    uniform = step > 0 and np.all(np.abs(dt - step) <= _RTOL_UNIFORM * step)
+    return float(step) if uniform else None
+
+
+def spectrum(time, values, skip: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided amplitude spectrum of a uniformly sampled signal.
+
+    ``time`` [s] and ``values`` [any unit] have equal length. The first ``skip`` seconds
+    (transient) are dropped, the mean of the rest removed, a Hann window applied and the
+    ``numpy.fft.rfft`` scaled by ``2 / sum(window)``, so a sine of amplitude A at a bin frequency
+    shows a peak of height A. Returns ``(freq [Hz], amplitude [unit of values])``.
+    Raises ValueError if ``time`` is not uniformly sampled (relative tolerance 1e-6) or fewer
+    than 8 samples remain after ``skip``.
+    """
+    time, values = np.asarray(time, float), np.asarray(values, float)
+    if time.shape != values.shape or time.ndim != 1:
+        raise ValueError(f"time and values must be 1-D of equal length, got {time.shape} and {values.shape}")
+    if skip < 0:
+        raise ValueError(f"skip must be >= 0 s, got {skip}")
+    keep = time - time[:1] >= skip
+    time, values = time[keep], values[keep]
+    if time.size < 8:
+        raise ValueError(f"need at least 8 samples after skipping {skip} s, got {time.size}")
+    step = _uniform_step(time)
+    if step is None:
+        raise ValueError("time is not uniformly sampled (relative tolerance 1e-6); "
+                         "resample it first, e.g. with numpy.interp")
+    window = np.hanning(time.size)
+    amplitude = np.abs(np.fft.rfft((values - values.mean()) * window)) * 2 / window.sum()
+    amplitude[0] /= 2  # DC (and Nyquist, below) have no mirror image to fold in
+    if time.size % 2 == 0:
+        amplitude[-1] /= 2
+    return np.fft.rfftfreq(time.size, step), amplitude
+
+
+def envelope(time, values, window: float) -> tuple[np.ndarray, np.ndarray]:
+    """Lower and upper envelope of ``values``: running min and max over the centred time window
+    ``[t - window/2, t + window/2]`` (``window`` [s]; works on any increasing time grid).
+    Returns ``(lower, upper)`` in the unit of ``values``. Pick ``window`` of about one period of
+    the carrier oscillation: shorter windows follow the carrier, longer ones smear the envelope.
+    Within ``window / 2`` of either end the window is cut short, and the envelope less reliable.
+    """
+    time, values = np.asarray(time, float), np.asarray(values, float)
+    if not window > 0:
+        raise ValueError(f"window must be > 0 s, got {window}")
+    start = np.searchsorted(time, time - window / 2, side="left")
+    stop = np.searchsorted(time, time + window / 2, side="right")
+    # reduceat over the interleaved bounds reduces values[start:stop] at even positions; the
+    # padding sample keeps the index stop == len(values) valid and is never inside a window
+    bounds = np.column_stack([start, stop]).ravel()
+    padded = np.append(values, values[-1])
+    return np.minimum.reduceat(padded, bounds)[::2], np.maximum.reduceat(padded, bounds)[::2]
+
+
+def _check_names(rec: Recording, names) -> None:
+    if not names:
+        raise ValueError("no signals named to plot")
+    for name in names:
+        if name not in rec.columns:
+            raise KeyError(f"{name!r} is not in the recording; available: {', '.join(rec.columns)}")
+
+
+def _unit(rec: Recording, name: str) -> str:
+    return rec.units.get(name) or "-"
+
+
+def _stacked(rec: Recording, names, path, title: str, xlabel: str,
+             draw: Callable[[Axes, str], str]) -> Path:
+    """Write one figure with an axis per name, stacked over a shared x axis, to ``path``.
+    ``draw(ax, name)`` plots the signal ``name`` on ``ax`` and returns its y label."""
+    _check_names(rec, names)
+    fig = Figure(figsize=(8, 1.0 + 2.0 * len(names)), layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(len(names), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, name in zip(axes, names):
+        ax.set_ylabel(draw(ax, name))
+        ax.set_title(name, fontsize=9, loc="left")
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(xlabel)
+    fig.suptitle(title)
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    return path
+
+
+def plot_time(rec: Recording, names, path) -> Path:
+    """Time histories of the columns ``names`` [their units] over time [s], written to ``path``."""
+    def draw(ax, name):
+        ax.plot(rec.time, rec.columns[name], lw=0.8)
+        return f"value [{_unit(rec, name)}]"
+    return _stacked(rec, names, path, "Time histories", "time [s]", draw)
+
+
+def _peaks(amplitude: np.ndarray, count: int) -> np.ndarray:
+    """Indices of the ``count`` highest local maxima of ``amplitude``, highest first."""
+    inner = np.flatnonzero((amplitude[1:-1] > amplitude[:-2]) & (amplitude[1:-1] >= amplitude[2:])) + 1
+    return inner[np.argsort(amplitude[inner])[::-1][:count]]
+
+
+def plot_spectra(rec: Recording, names, path, skip: float = 0.0, f_max: float | None = None,
+                 n_peaks: int = 5) -> Path:
+    """Amplitude spectra (see :func:`spectrum`) of the columns ``names`` after the first ``skip``
+    seconds: log amplitude [unit of the column] over linear frequency [kHz] up to ``f_max`` [Hz]
+    (default: Nyquist), with the ``n_peaks`` highest local maxima marked and their frequencies
+    [Hz] listed, highest first.
+    A non-uniform recording (adaptive step) is first resampled with ``numpy.interp`` on a uniform
+    grid at its median time step.
+    """
+    time = rec.time
+    if _uniform_step(time) is None:
+        if np.any(np.diff(time) <= 0):
+            raise ValueError("time must be strictly increasing")
+        step = np.median(np.diff(time))
+        time = time[0] + step * np.arange(int((time[-1] - time[0]) / step) + 1)
+
+    def draw(ax, name):
+        freq, amplitude = spectrum(time, np.interp(time, rec.time, rec.columns[name]), skip)
+        if f_max is not None:
+            freq, amplitude = freq[freq <= f_max], amplitude[freq <= f_max]
+        ax.semilogy(freq / 1e3, amplitude, lw=0.8)
+        top = _peaks(amplitude, n_peaks)
+        ax.plot(freq[top] / 1e3, amplitude[top], "v", color="C3", ms=5)
+        # listed in a corner rather than beside each marker: close peaks (sidebands) stay legible
+        ax.text(0.99, 0.95, "peaks: " + ", ".join(f"{freq[i]:.4g}" for i in top) + " Hz",
+                transform=ax.transAxes, ha="right", va="top", fontsize=8,
+                bbox=dict(facecolor="white", edgecolor="0.8", alpha=0.8))
+        if amplitude.max() > 0:
+            ax.set_ylim(amplitude.max() * 1e-6, amplitude.max() * 30)
+        return f"amplitude [{_unit(rec, name)}]"
+    return _stacked(rec, names, path, f"Amplitude spectra (Hann window, first {skip:g} s skipped)",
+                    "frequency [kHz]", draw)
+
+
+def plot_film(rec: Recording, names, path) -> Path:
+    """Film thickness: the columns ``names`` (unit "m") plotted in micrometres over time [s]."""
+    for name in names:
+        if rec.units.get(name, "m") not in ("m", ""):
+            raise ValueError(f"film thickness {name!r} must be in m, its unit is {rec.units[name]!r}")
+
+    def draw(ax, name):
+        ax.plot(rec.time, rec.columns[name] * 1e6, lw=0.8)
+        return "film [µm]"
+    return _stacked(rec, names, path, "Film thickness", "time [s]", draw)
+
+
+def plot_envelope(rec: Recording, names, path, window: float) -> Path:
+    """Signals ``names`` (faint) with their upper and lower envelopes (see :func:`envelope`,
+    running max/min over ``window`` seconds) over time [s]."""
+    def draw(ax, name):
+        lower, upper = envelope(rec.time, rec.columns[name], window)
+        ax.plot(rec.time, rec.columns[name], lw=0.5, color="0.7")
+        ax.plot(rec.time, upper, lw=1.0, color="C3", label="upper")
+        ax.plot(rec.time, lower, lw=1.0, color="C0", label="lower")
+        ax.legend(fontsize=7, loc="upper right")
+        return f"value [{_unit(rec, name)}]"
+    return _stacked(rec, names, path, f"Envelope (running max/min over {window:g} s)", "time [s]", draw)
+
+
+def plot_all(rec: Recording, plots: dict, out_dir, *, skip: float = 0.0, f_max: float | None = None,
+             window: float | None = None) -> list[Path]:
+    """Write ``<kind>.png`` into ``out_dir`` for each ``kind: names`` in ``plots``, kinds being
+    "time", "spectrum" (uses ``skip`` [s] and ``f_max`` [Hz]), "film" and "envelope" (needs
+    ``window`` [s]). Every name is checked before any file is written. Returns the paths."""
+    unknown = set(plots) - set(_KINDS)
+    if unknown:
+        raise ValueError(f"unknown plot kinds {sorted(unknown)}; known: {', '.join(_KINDS)}")
+    if "envelope" in plots and window is None:
+        raise ValueError("an envelope plot needs window [s]")
+    for names in plots.values():
+        _check_names(rec, names)
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    writers = {
+        "time": lambda names, path: plot_time(rec, names, path),
+        "spectrum": lambda names, path: plot_spectra(rec, names, path, skip, f_max),
+        "film": lambda names, path: plot_film(rec, names, path),
+        "envelope": lambda names, path: plot_envelope(rec, names, path, window),
+    }
+    return [writers[kind](names, out_dir / f"{kind}.png") for kind, names in plots.items()]

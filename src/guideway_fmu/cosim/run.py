@@ -1,0 +1,39 @@
+"""One scenario run to a folder: results.csv (+ units), summary.json and the plots."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from . import master, plots
+from .system import PLOT_KINDS, System
+
+
+def run(system: System, out: Path, progress: bool = True) -> master.Result:
+    """Simulate ``system`` and write everything into ``out``. On failure the partial recording
+    and a summary with the error are written before SimulationError propagates."""
+    out.mkdir(parents=True, exist_ok=True)
+    try:
+        result = master.simulate(system, progress=progress)
+    except master.SimulationError as exc:
+        _write(exc.result, system, out, plot=False)
+        raise
+    _write(result, system, out, plot=True)
+    return result
+
+
+def _write(result: master.Result, system: System, out: Path, plot: bool) -> None:
+    rec = result.recording
+    rec.write_csv(out / "results.csv")
+    files = ["results.csv", "results.units.json", "summary.json"]
+    if plot and len(rec.time) > 8:
+        kinds = {k: v for k, v in system.plots.items() if k in PLOT_KINDS and v}
+        options = {k: system.plots[k] for k in ("skip", "f_max", "window") if k in system.plots}
+        span = rec.time[-1] - rec.time[0]
+        if "envelope" in kinds and "window" not in options:
+            options["window"] = span / 200
+        if options.get("skip", 0.0) > span / 2:  # a shortened run: keep half for the spectrum
+            options["skip"] = span / 2
+        files += [p.name for p in plots.plot_all(rec, kinds, out, **options)]
+    summary = {**result.summary(), "experiment": system.experiment.__dict__,
+               "scenario_file": str(system.path), "files": files}
+    (out / "summary.json").write_text(json.dumps(summary, indent=2, default=str))

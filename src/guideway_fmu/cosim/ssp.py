@@ -1,0 +1,195 @@
+"""SSP 1.0 export of a system description, for libcosim (OSP) and fmpy's SSP runner.
+
+The package is a zip holding
+
+* ``SystemStructure.ssd``: one ``ssd:System`` with an ``ssd:Component`` per instance
+  (``source="resources/<file>.fmu"``) whose Connectors are its outputs, parameters,
+  calculated parameters and *connected* inputs (typed ``ssc:Real/Integer/Boolean/String``),
+  whose ``parameters`` are an inline ``ssv:ParameterSet``; the ``system.connections`` (tangents
+  are a notion of our stabilised master, not of SSP); ``ssd:DefaultExperiment`` with start and
+  stop time [s] and the OSP annotation with the macro step [s];
+* ``resources/<file>.fmu``: each FMU file once, however many instances share it.
+
+It describes a fixed-step run with ``experiment.step`` whatever ``experiment.algorithm`` says;
+tangents, step-size control, recording and plots are not exported.
+
+What the tools do with it (measured with libcosimpy 0.0.6 and fmpy 0.3.32) and how their steps
+compare with our master's "jacobi" (algorithms.py: every instance takes its inputs from the
+outputs read after the previous step, then all step t -> t + h; outputs read after a step are
+those of the inputs held during it, so a feedthrough output lags its input by one step):
+
+libcosim (``CosimExecution.from_ssp_file``)
+    Applies the inline parameter bindings (one it cannot apply only logs a warning). Needs the
+    macro step from ``ssd:DefaultExperiment/ssd:Annotations/ssc:Annotation[@type=
+    "com.opensimulationplatform"]/osp:Algorithm/osp:FixedStepAlgorithm/@baseStepSize`` (or a step
+    passed to ``from_ssp_file``); it matches the literal prefixes ``ssd: ssc: ssv: osp:``, which
+    this writer therefore uses. It runs the pythonfmu FMUs in the host interpreter, as fmpy
+    does: nothing to preload from Python.
+    Steps: the same Jacobi scheme; the same trajectories to ~1e-13 relative (its clock counts
+    integer nanoseconds, so the FMUs see t differing by ~1e-19 s). Initialisation: it copies
+    outputs to inputs in initialization mode, as many rounds as there are FMUs (our master: one
+    pass, sources first); its sample at the start time of an output fed through from an input
+    is the value computed in initialization mode, so it differs when the source's outputs change
+    at exitInitializationMode (ContactEHL sets its films there: friction fed by it at t = start).
+fmpy (``fmpy.ssp.simulation.simulate_ssp``)
+    Ignores the bindings and the annotation: pass ``parameter_set(system)`` and start/stop/step.
+    Cannot set String variables. An input connector without a connection is silently fed by the
+    source of the input connector listed before it (or fails): every connector of kind input
+    must be connected, which is why only connected inputs are exported.
+    No initialisation of inputs: they keep their start values (or the parameter set's) through
+    initialization mode, and every connected input is 0.0 in the first step. After that the same
+    Jacobi scheme; the row labelled t holds the values read after the step t -> t + h, and t
+    advances by adding h as our master does (the last row is that of ``while t < stop``, one
+    more than stop / h when the sum falls short). Where zero inputs in the first step change
+    nothing (a system at rest at the start, as in tests/test_ssp.py) its rows equal our master's
+    samples one step later exactly.
+"""
+from __future__ import annotations
+
+import zipfile
+from pathlib import Path
+
+import numpy as np
+from xml.etree import ElementTree as ET
+
+from fmpy.ssp.ssd import Parameter, ParameterSet
+
+from .system import System
+
+SSD = "http://ssp-standard.org/SSP1/SystemStructureDescription"
+SSC = "http://ssp-standard.org/SSP1/SystemStructureCommon"
+SSV = "http://ssp-standard.org/SSP1/SystemStructureParameterValues"
+OSP = "http://opensimulationplatform.com/SSP/OSPAnnotations"
+NAMESPACES = {"ssd": SSD, "ssc": SSC, "ssv": SSV, "osp": OSP}
+for _prefix, _uri in NAMESPACES.items():
+    ET.register_namespace(_prefix, _uri)
+
+_KINDS = ("input", "output", "parameter", "calculatedParameter")  # FMI causality = SSP kind
+_TYPES = {"Real": "Real", "Integer": "Integer", "Boolean": "Boolean", "String": "String",
+          "Enumeration": "Integer"}  # FMI 2 enumerations are integers; libcosim rejects ssc:Enumeration
+
+
+def export_ssp(system: System, out: str | Path) -> Path:
+    """Write ``system`` as an SSP 1.0 package to ``out`` (a new ``.ssp`` zip); returns its path.
+
+    Raises FileNotFoundError naming the file if ``out``'s folder or an FMU file does not exist,
+    ValueError if two different FMU files share a file name.
+    """
+    out = Path(out)
+    if not out.parent.is_dir():
+        raise FileNotFoundError(f"cannot write {out}: folder {out.parent} does not exist")
+    sources: dict[str, Path] = {}
+    for comp in system.components.values():
+        if not comp.fmu.is_file():
+            raise FileNotFoundError(f"{comp.name}: FMU file {comp.fmu} does not exist")
+        other = sources.setdefault(comp.fmu.name, comp.fmu)
+        if other.resolve() != comp.fmu.resolve():
+            raise ValueError(f"{comp.name}: FMU files {other} and {comp.fmu} share the name "
+                             f"{comp.fmu.name} and cannot both go to resources/")
+    ssd = ET.tostring(_ssd(system), encoding="UTF-8", xml_declaration=True)
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+        zf.writestr("SystemStructure.ssd", ssd)
+        for name, path in sources.items():
+            zf.write(path, f"resources/{name}")
+    return out
+
+
+def parameter_set(system: System) -> ParameterSet:
+    """The components' parameters as the ``parameter_set`` of fmpy's ``simulate_ssp``.
+
+    fmpy 0.3.32 takes an ``fmpy.ssp.ssd.ParameterSet`` (not a dict) whose parameter names are
+    ``<instance>.<variable>``, and applies a parameter to every instance whose name the
+    parameter's name starts with. Raises ValueError for what it would get wrong: String
+    parameters (it cannot set them) and a parameter name that starts with another instance's.
+    """
+    params = []
+    for inst, comp in system.components.items():
+        for name, value in comp.parameters.items():
+            full, kind = f"{inst}.{name}", system.variables[inst][name].type
+            if kind == "String":
+                raise ValueError(f"{full}: fmpy's simulate_ssp cannot set String variables")
+            others = [i for i in system.components if i != inst and full.startswith(i)]
+            if others:
+                raise ValueError(f"{full}: fmpy would also apply it to {others[0]}: rename one instance")
+            params.append(Parameter(name=full, type=_TYPES[kind], value=value))
+    return ParameterSet(name="parameters", parameters=params)
+
+
+def _ssd(system: System) -> ET.Element:
+    root = ET.Element(f"{{{SSD}}}SystemStructureDescription", version="1.0", name=system.name)
+    sys_el = ET.SubElement(root, f"{{{SSD}}}System", name=system.name)
+    if system.description:
+        sys_el.set("description", system.description)
+    elements = ET.SubElement(sys_el, f"{{{SSD}}}Elements")
+    connected = {(c.target, c.input) for c in system.connections}
+    for inst, comp in system.components.items():
+        el = ET.SubElement(elements, f"{{{SSD}}}Component", name=inst,
+                           source=f"resources/{comp.fmu.name}", type="application/x-fmu-sharedlibrary")
+        connectors = ET.SubElement(el, f"{{{SSD}}}Connectors")
+        for v in system.variables[inst].values():
+            if v.causality in _KINDS and (v.causality != "input" or (inst, v.name) in connected):
+                c = ET.SubElement(connectors, f"{{{SSD}}}Connector", name=v.name, kind=v.causality)
+                ET.SubElement(c, f"{{{SSC}}}{_TYPES[v.type]}")
+        if comp.parameters:
+            binding = ET.SubElement(ET.SubElement(el, f"{{{SSD}}}ParameterBindings"),
+                                    f"{{{SSD}}}ParameterBinding")
+            pset = ET.SubElement(ET.SubElement(binding, f"{{{SSD}}}ParameterValues"),
+                                 f"{{{SSV}}}ParameterSet", version="1.0", name=f"{inst}-parameters")
+            parameters = ET.SubElement(pset, f"{{{SSV}}}Parameters")
+            for name, value in comp.parameters.items():
+                kind = _TYPES[system.variables[inst][name].type]
+                p = ET.SubElement(parameters, f"{{{SSV}}}Parameter", name=name)
+                ET.SubElement(p, f"{{{SSV}}}{kind}", value=_text(kind, value))
+    if system.connections:
+        connections = ET.SubElement(sys_el, f"{{{SSD}}}Connections")
+        for c in system.connections:
+            ET.SubElement(connections, f"{{{SSD}}}Connection", startElement=c.source,
+                          startConnector=c.output, endElement=c.target, endConnector=c.input)
+    exp = system.experiment
+    default = ET.SubElement(root, f"{{{SSD}}}DefaultExperiment", startTime=repr(exp.start),
+                            stopTime=repr(exp.stop))
+    osp = ET.SubElement(ET.SubElement(default, f"{{{SSD}}}Annotations"), f"{{{SSC}}}Annotation",
+                        type="com.opensimulationplatform")
+    ET.SubElement(ET.SubElement(osp, f"{{{OSP}}}Algorithm"), f"{{{OSP}}}FixedStepAlgorithm",
+                  baseStepSize=repr(exp.step))
+    ET.indent(root)
+    return root
+
+
+def _text(kind: str, value) -> str:
+    if kind == "Boolean":
+        return "true" if value else "false"
+    return repr(float(value)) if kind == "Real" else str(value)
+
+
+def run_libcosim(package, names, steps):
+    """Run an exported package in libcosim (libcosimpy, an optional dependency) for ``steps``
+    macro steps; time [s] and the columns ``<instance>.<variable>`` (Real) at the steps + 1
+    communication points."""
+    from libcosimpy.CosimEnums import CosimVariableType
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
+    execution = CosimExecution.from_ssp_file(str(package))
+    observer = CosimObserver.create_time_series()
+    if not execution.add_observer(observer):
+        raise RuntimeError(f"libcosim: cannot observe {package}")
+    index = {s.name.decode(): s.index for s in execution.slave_infos()}
+    refs = {}
+    for name in names:
+        inst, var = name.split(".", 1)
+        refs[name] = index[inst], next(v.reference for v in execution.slave_variables(index[inst])
+                                       if v.name.decode() == var)
+        if not observer.start_time_series(*refs[name], CosimVariableType.REAL):
+            raise RuntimeError(f"libcosim: cannot record {name}")
+    if not execution.step(steps):
+        raise RuntimeError(f"libcosim: {package} failed to step")
+    columns = {}
+    for name, (i, ref) in refs.items():
+        # libcosimpy 0.0.6 drops as many samples as it finds step numbers 0: read step 0 alone
+        _, _, first = observer.time_series_real_samples(i, ref, from_step=0, sample_count=2)
+        times, _, rest = observer.time_series_real_samples(i, ref, from_step=1, sample_count=steps)
+        columns[name] = np.array([first[0], *rest])
+    return np.array([0, *times]) * 1e-9, columns

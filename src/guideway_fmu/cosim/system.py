@@ -1,0 +1,369 @@
+"""System description: components (FMUs), connections, tangents, experiment, recording, plots.
+
+Read from a TOML scenario (``orchestration/scenarios/*.toml``) and checked against each FMU's
+modelDescription before anything is instantiated; every error names the file, the table and the
+key. The format (tables and keys, all SI units)::
+
+    name = "..."                    # optional, defaults to the file stem
+    description = "..."             # optional
+
+    [experiment]
+    start = 0.0                     # s
+    stop = 0.2                      # s
+    step = 2e-6                     # s, macro step (the initial one for adaptive algorithms)
+    algorithm = "stabilised"        # "jacobi", "gauss-seidel" or "stabilised"
+    tolerance = 0.0                 # stabilised only: > 0 turns on step-size control (module doc
+    min_step = 1e-8                 #   of stabilised.py); min_step/max_step bound the step [s]
+    max_step = 1e-4
+
+    [components.Contact]            # one table per instance; the key is the instance name
+    fmu = "../../fmus/ContactEHL.fmu"   # relative to this file, or looked up in --fmus
+    parameters = { preload = 9200.0 }   # parameters (or inputs' start values) by name
+
+    [[connections]]
+    from = "Body.y"                 # <instance>.<output>
+    to = "Contact.y"                # <instance>.<input>
+
+    [[tangents]]                    # stiff loops: the stabilised algorithm only
+    force = "Contact.F_contact"     # feedthrough output of the stiff component
+    position = "Contact.y"          # the input it depends on (stiffness = dforce/dposition)
+    stiffness = "Contact.K_contact" # an output, or "fd" for a finite difference by the master
+    to_stiffness = "Body.K_contact" # the consumer's input that takes the stiffness
+    velocity = "Contact.y_dot"      # optional: the same for the damping dforce/dvelocity
+    damping = "Contact.C_contact"
+    to_damping = "Body.C_contact"
+
+    [record]
+    variables = ["Contact.F_upper"] # optional; default: every output of every component
+    interval = 1e-5                 # optional, s: record every macro step not closer than this
+
+    [plots]                         # optional; each a list of <instance>.<variable>
+    time = ["Body.y"]               # time histories
+    spectrum = ["Body.y"]           # FFT amplitude spectra
+    film = ["Contact.h_upper"]      # film thickness histories (in micrometres)
+    envelope = ["Contact.F_upper"]  # running max/min over `window`
+    skip = 0.01                     # s of transient left out of the spectra
+    window = 1e-3                   # s, envelope window
+    f_max = 20000.0                 # Hz, upper end of the spectrum plots
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from fmpy import read_model_description
+
+ALGORITHMS = ("jacobi", "gauss-seidel", "stabilised")
+PLOT_KINDS = ("time", "spectrum", "film", "envelope")
+PLOT_OPTIONS = ("skip", "f_max", "window")  # s, Hz, s: see cosim/plots.py
+
+
+class ScenarioError(ValueError):
+    """A scenario that cannot be used; the message names the file, table and key."""
+
+
+@dataclass(frozen=True)
+class Component:
+    """An FMU instance: its name, FMU file and the parameter values to apply."""
+
+    name: str
+    fmu: Path
+    parameters: dict
+
+
+@dataclass(frozen=True)
+class Connection:
+    """Output ``source.output`` feeds input ``target.input``."""
+
+    source: str
+    output: str
+    target: str
+    input: str
+
+
+@dataclass(frozen=True)
+class Tangent:
+    """The linearisation of a stiff feedthrough output that the stabilised algorithm passes on.
+
+    ``stiffness``/``damping`` are output names of the force's instance, or "fd" for a central
+    finite difference of ``force`` over ``position``/``velocity`` taken by the master.
+    """
+
+    instance: str
+    force: str
+    position: str
+    stiffness: str
+    to_stiffness: tuple[str, str]
+    velocity: str | None = None
+    damping: str | None = None
+    to_damping: tuple[str, str] | None = None
+
+
+@dataclass(frozen=True)
+class Experiment:
+    start: float = 0.0
+    stop: float = 1.0
+    step: float = 1e-3
+    algorithm: str = "gauss-seidel"
+    tolerance: float = 0.0
+    min_step: float = 1e-9
+    max_step: float = math.inf
+
+
+@dataclass(frozen=True)
+class System:
+    """A checked system description; ``variables`` maps instance -> {name: ScalarVariable}."""
+
+    name: str
+    path: Path | None
+    components: dict[str, Component]
+    connections: tuple[Connection, ...]
+    experiment: Experiment
+    tangents: tuple[Tangent, ...] = ()
+    record: tuple[str, ...] = ()
+    record_interval: float = 0.0
+    plots: dict = field(default_factory=dict)
+    description: str = ""
+    variables: dict = field(default_factory=dict, repr=False)
+    feedthrough: dict = field(default_factory=dict, repr=False)  # instance -> {output: bool}
+
+    def unit(self, instance: str, variable: str) -> str:
+        return self.variables[instance][variable].unit or ""
+
+    def with_changes(self, fmus: dict[str, Path] | None = None, **experiment) -> "System":
+        """A copy with some FMU files replaced (instance -> path) and experiment fields changed."""
+        comps = {n: Component(n, Path((fmus or {}).get(n, c.fmu)), c.parameters)
+                 for n, c in self.components.items()}
+        exp = Experiment(**{**self.experiment.__dict__, **experiment})
+        return check(System(self.name, self.path, comps, self.connections, exp, self.tangents,
+                            self.record, self.record_interval, self.plots, self.description),
+                     str(self.path or self.name))
+
+
+# -- reading -------------------------------------------------------------------------------
+class _Table:
+    """A TOML table that knows where it came from, for error messages."""
+
+    def __init__(self, source: str, name: str, data):
+        if not isinstance(data, dict):
+            raise ScenarioError(f"{source}: [{name}] must be a table, got {type(data).__name__}")
+        self.source, self.name, self.data = source, name, data
+
+    def error(self, key: str, message: str) -> ScenarioError:
+        return ScenarioError(f"{self.source}: [{self.name}] key '{key}': {message}")
+
+    def get(self, key: str, kind, default=None, required: bool = False):
+        if key not in self.data:
+            if required:
+                raise self.error(key, "is missing")
+            return default
+        value = self.data[key]
+        kinds = (int, float) if kind is float else kind
+        if isinstance(value, bool) and kind is not bool or not isinstance(value, kinds):
+            raise self.error(key, f"must be {getattr(kind, '__name__', kind)}, got {value!r}")
+        return float(value) if kind is float else value
+
+    def ref(self, key: str, required: bool = True) -> tuple[str, str] | None:
+        """A ``<instance>.<variable>`` reference."""
+        value = self.get(key, str, required=required)
+        if value is None:
+            return None
+        inst, dot, var = value.partition(".")
+        if not (inst and dot and var):
+            raise self.error(key, f"must be '<instance>.<variable>', got {value!r}")
+        return inst, var
+
+    def unknown(self, allowed) -> None:
+        extra = sorted(set(self.data) - set(allowed))
+        if extra:
+            raise self.error(extra[0], f"is not a known key (known: {', '.join(sorted(allowed))})")
+
+
+def load(path: str | Path, fmu_dir: str | Path | None = None) -> System:
+    """Read and check a scenario TOML file.
+
+    FMU paths are relative to the scenario file; with ``fmu_dir`` each FMU is instead taken by
+    its file name from that folder.
+    """
+    path = Path(path)
+    src = str(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except OSError as exc:
+        raise ScenarioError(f"{src}: cannot read the scenario: {exc.strerror or exc}") from exc
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{src}: not valid TOML: {exc}") from exc
+    top = _Table(src, "top level", data)
+    top.unknown(("name", "description", "experiment", "components", "connections", "tangents",
+                 "record", "plots"))
+
+    exp_t = _Table(src, "experiment", top.get("experiment", dict, required=True))
+    exp_t.unknown(Experiment.__dataclass_fields__)
+    d = Experiment()
+    exp = Experiment(**{k: exp_t.get(k, type(getattr(d, k)), getattr(d, k))
+                        for k in Experiment.__dataclass_fields__})
+
+    comps = {}
+    for name, table in _Table(src, "components", top.get("components", dict, required=True)).data.items():
+        t = _Table(src, f"components.{name}", table)
+        t.unknown(("fmu", "parameters"))
+        fmu = Path(t.get("fmu", str, required=True))
+        fmu = Path(fmu_dir) / fmu.name if fmu_dir is not None else path.parent / fmu
+        params = _Table(src, f"components.{name}.parameters", t.get("parameters", dict, {})).data
+        comps[name] = Component(name, fmu, dict(params))
+
+    connections = []
+    for i, table in enumerate(top.get("connections", list, [])):
+        t = _Table(src, f"connections #{i + 1}", table)
+        t.unknown(("from", "to"))
+        (a, b), (c, e) = t.ref("from"), t.ref("to")
+        connections.append(Connection(a, b, c, e))
+
+    tangents = []
+    for i, table in enumerate(top.get("tangents", list, [])):
+        t = _Table(src, f"tangents #{i + 1}", table)
+        t.unknown(Tangent.__dataclass_fields__.keys() - {"instance"})
+        inst, force = t.ref("force")
+        named = {}
+        for key in ("position", "velocity"):
+            r = t.ref(key, required=key == "position")
+            if r is not None and r[0] != inst:
+                raise t.error(key, f"must be an input of {inst}, the force's instance")
+            named[key] = r[1] if r else None
+        for key in ("stiffness", "damping"):
+            value = t.get(key, str, required=key == "stiffness")
+            if value is not None and value != "fd":
+                r = t.ref(key)
+                if r[0] != inst:
+                    raise t.error(key, f"must be an output of {inst} or \"fd\"")
+                value = r[1]
+            named[key] = value
+        to_k, to_c = t.ref("to_stiffness"), t.ref("to_damping", required=False)
+        if (named["velocity"] is None) != (named["damping"] is None) or (named["damping"] is None) != (to_c is None):
+            raise t.error("velocity", "velocity, damping and to_damping go together")
+        tangents.append(Tangent(inst, force, named["position"], named["stiffness"], to_k,
+                                named["velocity"], named["damping"], to_c))
+
+    rec_t = _Table(src, "record", top.get("record", dict, {}))
+    rec_t.unknown(("variables", "interval"))
+    record = rec_t.get("variables", list, [])
+    for v in record:
+        if not isinstance(v, str) or "." not in v:
+            raise rec_t.error("variables", f"entries must be '<instance>.<variable>', got {v!r}")
+    plots_t = _Table(src, "plots", top.get("plots", dict, {}))
+    plots_t.unknown(PLOT_KINDS + PLOT_OPTIONS)
+    plots = {k: plots_t.get(k, list, []) for k in PLOT_KINDS if k in plots_t.data}
+    plots.update({k: plots_t.get(k, float) for k in PLOT_OPTIONS if k in plots_t.data})
+
+    system = System(top.get("name", str, path.stem), path, comps, tuple(connections), exp,
+                    tuple(tangents), tuple(record), rec_t.get("interval", float, 0.0), plots,
+                    top.get("description", str, ""))
+    return check(system, src)
+
+
+# -- checking ------------------------------------------------------------------------------
+def check(system: System, src: str) -> System:
+    """Check the description against the FMUs' modelDescriptions; returns it with ``variables``."""
+    exp = system.experiment
+
+    def fail(table, key, message):
+        return ScenarioError(f"{src}: [{table}] key '{key}': {message}")
+
+    if exp.algorithm not in ALGORITHMS:
+        raise fail("experiment", "algorithm", f"must be one of {ALGORITHMS}, got {exp.algorithm!r}")
+    for key in ("start", "stop", "step", "tolerance", "min_step", "max_step"):
+        value = getattr(exp, key)
+        if math.isnan(value) or (key != "max_step" and not math.isfinite(value)):
+            raise fail("experiment", key, f"must be finite, got {value!r}")
+    if not exp.stop > exp.start:
+        raise fail("experiment", "stop", f"must be greater than start ({exp.start}), got {exp.stop}")
+    if not 0 < exp.step <= exp.stop - exp.start:
+        raise fail("experiment", "step", f"must be > 0 and <= stop - start, got {exp.step}")
+    if exp.tolerance < 0:
+        raise fail("experiment", "tolerance", f"must be >= 0, got {exp.tolerance}")
+    if not 0 < exp.min_step <= exp.max_step:
+        raise fail("experiment", "min_step", f"must be > 0 and <= max_step, got {exp.min_step}")
+    if not system.components:
+        raise fail("components", "-", "at least one component is needed")
+
+    variables, feedthrough = {}, {}
+    for name, comp in system.components.items():
+        if not comp.fmu.is_file():
+            raise fail(f"components.{name}", "fmu", f"FMU file {comp.fmu} does not exist")
+        try:
+            md = read_model_description(str(comp.fmu))
+        except Exception as exc:  # noqa: BLE001 - fmpy raises many kinds for a broken FMU
+            raise fail(f"components.{name}", "fmu", f"cannot read {comp.fmu}: {exc}") from exc
+        if md.fmiVersion != "2.0" or md.coSimulation is None:
+            raise fail(f"components.{name}", "fmu", f"{comp.fmu.name} is not an FMI 2.0 co-simulation FMU")
+        variables[name] = {v.name: v for v in md.modelVariables}
+        # ModelStructure: an output without a dependencies list depends on everything
+        feedthrough[name] = {u.variable.name: u.dependencies is None or any(
+            d.causality == "input" for d in u.dependencies) for u in md.outputs}
+        for key, value in comp.parameters.items():
+            v = variables[name].get(key)
+            if v is None or v.causality not in ("parameter", "input"):
+                raise fail(f"components.{name}.parameters", key,
+                           f"{comp.fmu.name} has no parameter or input of that name")
+            if not _fits(v.type, value):
+                raise fail(f"components.{name}.parameters", key,
+                           f"{v.type} variable cannot take {value!r}")
+
+    def need(table, key, inst, var, causality):
+        if inst not in variables:
+            raise fail(table, key, f"no component named {inst!r}")
+        v = variables[inst].get(var)
+        if v is None:
+            raise fail(table, key, f"{system.components[inst].fmu.name} has no variable {var!r}")
+        if causality and v.causality not in causality:
+            raise fail(table, key, f"{inst}.{var} is a {v.causality}, not an {' or '.join(causality)}")
+        return v
+
+    fed = {}
+    for i, c in enumerate(system.connections):
+        table = f"connections #{i + 1}"
+        out = need(table, "from", c.source, c.output, ("output",))
+        inp = need(table, "to", c.target, c.input, ("input",))
+        if out.type != inp.type:
+            raise fail(table, "to", f"type {inp.type} cannot take the {out.type} output {c.source}.{c.output}")
+        if (c.target, c.input) in fed:
+            raise fail(table, "to", f"{c.target}.{c.input} is already fed by {fed[(c.target, c.input)]}")
+        fed[(c.target, c.input)] = f"{c.source}.{c.output}"
+    for i, t in enumerate(system.tangents):
+        table = f"tangents #{i + 1}"
+        need(table, "force", t.instance, t.force, ("output",))
+        need(table, "position", t.instance, t.position, ("input",))
+        if t.stiffness != "fd":
+            need(table, "stiffness", t.instance, t.stiffness, ("output",))
+        need(table, "to_stiffness", *t.to_stiffness, ("input",))
+        if t.velocity:
+            need(table, "velocity", t.instance, t.velocity, ("input",))
+            if t.damping != "fd":
+                need(table, "damping", t.instance, t.damping, ("output",))
+            need(table, "to_damping", *t.to_damping, ("input",))
+    for v in system.record:
+        inst, _, var = v.partition(".")
+        need("record", "variables", inst, var, None)
+    for kind in PLOT_KINDS:
+        for v in system.plots.get(kind, []):
+            if not isinstance(v, str):
+                raise fail("plots", kind, f"entries must be '<instance>.<variable>', got {v!r}")
+            inst, _, var = v.partition(".")
+            need("plots", kind, inst, var, None)
+    if system.record_interval < 0 or not math.isfinite(system.record_interval):
+        raise fail("record", "interval", f"must be >= 0, got {system.record_interval}")
+    object.__setattr__(system, "variables", variables)
+    object.__setattr__(system, "feedthrough", feedthrough)
+    return system
+
+
+def _fits(kind: str, value) -> bool:
+    if kind == "Real":
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    if kind in ("Integer", "Enumeration"):
+        return isinstance(value, int) and not isinstance(value, bool)
+    if kind == "Boolean":
+        return isinstance(value, bool)
+    return isinstance(value, str)

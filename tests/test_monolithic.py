@@ -1,0 +1,177 @@
+"""The monolithic reference (guideway_fmu.monolithic) against independent results."""
+import math
+import zipfile
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from guideway_fmu import monolithic
+from guideway_fmu.cosim import system
+from guideway_fmu.physics import carriage, feed_profiles, guideway
+
+RIG_WIRING = [("Body.y", "Contact.y"), ("Body.y_dot", "Contact.y_dot"),
+              ("Contact.F_contact", "Body.F_contact")]
+FRICTION_WIRING = [("Feed.u", "Friction.u"), *((f"Contact.{v}", f"Friction.{v}")
+                                               for v in ("F_upper", "F_lower", "h_upper", "h_lower"))]
+
+
+def _toml(value):
+    return f'"{value}"' if isinstance(value, str) else repr(value)
+
+
+def scenario(path, fmu_dir, components, connections, stop, step=1e-6):
+    """Write and load a scenario; ``components`` maps instance -> (FMU file or name, parameters)."""
+    lines = ["[experiment]", "start = 0.0", f"stop = {stop!r}", f"step = {step!r}"]
+    for name, (fmu, params) in components.items():
+        fmu = fmu if str(fmu).endswith(".fmu") else fmu_dir / f"{fmu}.fmu"
+        lines += [f"[components.{name}]", f'fmu = "{fmu.as_posix()}"']
+        if params:
+            lines.append("parameters = { " + ", ".join(f"{k} = {_toml(v)}" for k, v in params.items()) + " }")
+    for source, target in connections:
+        lines += ["[[connections]]", f'from = "{source}"', f'to = "{target}"']
+    path.write_text("\n".join(lines) + "\n")
+    return system.load(path)
+
+
+def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_dir, tmp_path):
+    mass, preload = 2.5, 8000.0
+    rig = scenario(tmp_path / "dry.toml", fmu_dir, {
+        "Body": ("VerticalDynamics", {"mass": mass, "gravity": 0.0, "y_start": 1e-9}),
+        "Contact": ("ContactDryHertz", {"preload": preload})}, RIG_WIRING, stop=3e-3)
+    ref = monolithic.simulate(rig)
+    y, t = ref.columns["Body.y"], ref.time
+    np.testing.assert_array_equal(t, np.arange(3001) * 1e-6)
+    i = np.flatnonzero(np.sign(y[:-1]) != np.sign(y[1:]))
+    crossings = t[i] - y[i] * (t[i + 1] - t[i]) / (y[i + 1] - y[i])
+    k = guideway.quasi_static_stiffness(guideway.Guideway(preload=preload), 0.0, lubricated=False)
+    expected = math.sqrt(k / mass) / (2 * math.pi)
+    assert len(crossings) > 30
+    measured = (len(crossings) - 1) / (2 * (crossings[-1] - crossings[0]))
+    assert measured == pytest.approx(expected, rel=1e-6)
+    assert np.max(np.abs(y)) == pytest.approx(1e-9, rel=1e-4, abs=0.0)  # undamped
+
+
+@pytest.mark.parametrize("contact, film_model", [
+    ("ContactEHL", "extrapolated"), ("ContactEHL", "pan_hamrock"), ("ContactDryHertz", None)])
+def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, contact, film_model):
+    u, load = 0.29, 5000.0
+    g = guideway.Guideway(contact=guideway.LineContact(model=film_model or "extrapolated"))
+    body = carriage.Body()
+
+    def residual(y):
+        f_u, f_l, _, _ = guideway.quasi_static_state(g, y, u, lubricated=film_model is not None)
+        return body.mass * body.gravity + load - float(guideway.net_force(g, f_u, f_l))
+
+    y_eq = brentq(residual, 0.0, 1e-5, xtol=1e-22, rtol=1e-15)
+    rig = scenario(tmp_path / "static.toml", fmu_dir, {
+        "Feed": ("FeedKinematics", {"profile": "constant", "velocity": u}),
+        "Contact": (contact, {"film_model": film_model} if film_model else {}),
+        "Body": ("VerticalDynamics", {"load_static": load, "y_start": y_eq}),
+    }, [("Feed.u", "Contact.u"), *RIG_WIRING], stop=5e-4, step=1e-5)
+    ref = monolithic.simulate(rig)
+    assert y_eq > 5e-7
+    assert np.max(np.abs(ref.columns["Body.y"] - y_eq)) < 1e-9 * y_eq
+    assert np.max(np.abs(ref.columns["Body.y_ddot"])) < 1e-3
+    h = ref.columns["Contact.h_upper"]
+    assert np.ptp(h) <= 1e-9 * h[0]
+
+
+def test_tighter_tolerance_changes_the_loaded_rig_little(fmu_dir, tmp_path):
+    rig = scenario(tmp_path / "loaded.toml", fmu_dir, {
+        "Feed": ("FeedKinematics", {}), "Contact": ("ContactEHL", {}),
+        "Body": ("VerticalDynamics", {"load_amplitude": 9000.0, "load_frequency": 4500.0}),
+        "Friction": ("FrictionMixedEHL", {}),
+    }, [("Feed.u", "Contact.u"), *RIG_WIRING, *FRICTION_WIRING], stop=2e-3, step=2e-6)
+    coarse, fine = (monolithic.simulate(rig, rtol=rtol) for rtol in (1e-8, 1e-10))
+    assert (fine.method, fine.rtol, coarse.rtol) == ("LSODA", 1e-10, 1e-8)
+    assert fine.nfev > coarse.nfev > 0 and fine.wall_time > 0.0
+    assert set(fine.columns) == {f"{inst}.{v.name}" for inst, variables in rig.variables.items()
+                                 for v in variables.values() if v.causality == "output"}
+    assert fine.units["Contact.F_upper"] == "N" and fine.units["Body.y_ddot"] == "m/s2"
+    for name, bound in (("Contact.F_upper", 2e-6), ("Body.y", 2e-6), ("Contact.h_upper", 2e-5),
+                        ("Friction.F_friction", 2e-5)):
+        error = np.max(np.abs(coarse.columns[name] - fine.columns[name]))
+        assert error < bound * np.ptp(fine.columns[name]), name
+
+
+def test_film_relaxes_to_the_steady_film_at_constant_feed_velocity(fmu_dir, tmp_path):
+    """The body, started at y = 0 with the films steady there, settles under a static load
+    (contact damping); the films follow the changed roller loads to their new steady values."""
+    u = 0.29
+    rig = scenario(tmp_path / "film.toml", fmu_dir, {
+        "Feed": ("FeedKinematics", {"profile": "constant", "velocity": u}),
+        "Contact": ("ContactEHL", {"damping": 2e4}),
+        "Body": ("VerticalDynamics", {"load_static": 5000.0}),
+    }, [("Feed.u", "Contact.u"), *RIG_WIRING], stop=5e-3, step=1e-5)
+    ref = monolithic.simulate(rig)
+    _, _, h_upper, h_lower = guideway.quasi_static_state(guideway.Guideway(), ref.columns["Body.y"], u)
+    for h, steady in ((ref.columns["Contact.h_upper"], h_upper), (ref.columns["Contact.h_lower"], h_lower)):
+        change = abs(h[-1] - h[0])
+        assert change > 1e-2 * h[0]
+        assert abs(h[0] - steady[0]) < 1e-9 * change  # starts steady at y_start
+        assert np.max(np.abs(h - steady)[:100]) > 0.1 * change  # lags the load while settling
+        assert abs(h[-1] - steady[-1]) < 1e-5 * change
+
+
+def _third_party_copy(fmu, path):
+    """A copy of ``fmu`` whose modelDescription names another model, as a foreign FMU would."""
+    with zipfile.ZipFile(fmu) as src, zipfile.ZipFile(path, "w") as dst:
+        for item in src.infolist():
+            data = src.read(item)
+            if item.filename == "modelDescription.xml":
+                data = data.replace(b"FrictionCoulomb", b"ThirdParty")
+            dst.writestr(item, data)
+    return path
+
+
+@pytest.mark.parametrize("case, message", [
+    ("third_party", r"component 'Other': FMU ThirdParty.fmu \(model identifier 'ThirdParty'\) cannot"),
+    ("unconnected_force", r"component 'Body' \(VerticalDynamics\): input F_contact is unconnected"),
+    ("feed_input", r"component 'Feed' \(FeedKinematics\): profile 'input'"),
+    ("force_from_friction", r"component 'Body' \(VerticalDynamics\): input F_ext is fed by Friction.F_friction"),
+    ("y_from_feed", r"component 'Contact' \(ContactEHL\): input y is fed by Feed.x"),
+    ("bad_parameter", r"component 'Contact' \(ContactEHL\): .*damping must be >= 0"),
+])
+def test_unsupported_component_or_wiring_is_refused_naming_the_component(fmu_dir, tmp_path, case, message):
+    components = {"Feed": ("FeedKinematics", {}), "Contact": ("ContactEHL", {}),
+                  "Body": ("VerticalDynamics", {}), "Friction": ("FrictionCoulomb", {})}
+    wiring = [("Feed.u", "Contact.u"), *RIG_WIRING, ("Feed.u", "Friction.u"),
+              ("Contact.F_upper", "Friction.F_upper"), ("Contact.F_lower", "Friction.F_lower")]
+    if case == "third_party":
+        components["Other"] = (_third_party_copy(fmu_dir / "FrictionCoulomb.fmu",
+                                                 tmp_path / "ThirdParty.fmu"), {})
+    elif case == "unconnected_force":
+        wiring.remove(("Contact.F_contact", "Body.F_contact"))
+    elif case == "feed_input":
+        components["Feed"] = ("FeedKinematics", {"profile": "input"})
+    elif case == "force_from_friction":
+        wiring.append(("Friction.F_friction", "Body.F_ext"))
+    elif case == "y_from_feed":
+        wiring[wiring.index(("Body.y", "Contact.y"))] = ("Feed.x", "Contact.y")
+    else:
+        components["Contact"] = ("ContactEHL", {"damping": -1.0})
+    rig = scenario(tmp_path / f"{case}.toml", fmu_dir, components, wiring, stop=1e-4)
+    with pytest.raises(ValueError, match=message):
+        monolithic.simulate(rig)
+
+
+@pytest.mark.parametrize("profile", [
+    feed_profiles.BiHarmonic(), feed_profiles.Oscillating(), feed_profiles.Constant(),
+    feed_profiles.Trapezoid(distance=-0.01, v_max=0.3, a_max=30.0, t_start=0.01),
+    feed_profiles.Table(time=(0.0, 0.01, 0.03, 0.04), velocity=(0.0, 0.2, -0.1, 0.05))])
+def test_fast_feed_velocity_equals_the_profile(profile):
+    """The reference's inner loop evaluates u with velocity_at; the outputs with evaluate."""
+    t = np.linspace(-0.01, 0.06, 1401)
+    fast = [profile.velocity_at(float(s)) for s in t]
+    np.testing.assert_allclose(fast, profile.evaluate(t)[1], rtol=1e-12, atol=1e-15)
+
+
+def test_times_must_increase_from_the_start(fmu_dir, tmp_path):
+    rig = scenario(tmp_path / "t.toml", fmu_dir, {"Contact": ("ContactDryHertz", {}),
+                                                  "Body": ("VerticalDynamics", {})}, RIG_WIRING, stop=1e-4)
+    ref = monolithic.simulate(rig, times=[2e-5, 5e-5])
+    np.testing.assert_array_equal(ref.time, [2e-5, 5e-5])
+    for times in ([-1e-5, 5e-5], [5e-5, 2e-5]):
+        with pytest.raises(ValueError, match="times must increase"):
+            monolithic.simulate(rig, times=times)

@@ -1,0 +1,205 @@
+"""SSP export: the package's structure, and runs of it in libcosim and in fmpy's SSP runner
+compared with our own Jacobi master (master.simulate).
+
+The scenario starts at rest: feed velocity, displacement and velocity are 0 at t = 0. fmpy's
+first step sees 0.0 on every connected input (cosim/ssp.py's docstring); the other tools see
+the outputs at t = 0, which differ from 0 only in the contact loads, and the friction at u = 0 is
+0 whatever the loads: the same first step. fmpy cannot set String parameters, so its scenario
+keeps the default feed profile (biharmonic, with phases 0).
+"""
+import dataclasses
+import json
+import shutil
+import xml.etree.ElementTree as ET
+import zipfile
+
+import numpy as np
+import pytest
+from fmpy.ssp.simulation import simulate_ssp  # fmpy.ssp.simulate parses sys.argv on import
+
+from guideway_fmu.cosim import master, ssp, system
+
+NS = {"ssd": ssp.SSD, "ssc": ssp.SSC, "ssv": ssp.SSV, "osp": ssp.OSP}
+BASE = {"Contact": {"preload": 8000.0}, "Rough": {"rollers_per_groove": 18}}
+LIBCOSIM = {**BASE, "Feed": {"profile": "oscillating", "mean_velocity": 0.0, "frequency": 40.0}}
+FMPY = {**BASE, "Feed": {"phase1": 0.0, "phase2": 0.0}}  # biharmonic; both profiles: u(0) = 0
+FRICTION_INPUTS = [("Feed.u", "u")] + [(f"Contact.{v}", v)
+                                       for v in ("F_upper", "F_lower", "h_upper", "h_lower")]
+WIRES = [("Feed.u", "Contact.u"), ("Body.y", "Contact.y"), ("Body.y_dot", "Contact.y_dot"),
+         ("Contact.F_contact", "Body.F_contact")] + [
+    (src, f"{inst}.{var}") for inst in ("Friction", "Rough") for src, var in FRICTION_INPUTS]
+FMUS = {"Feed": "FeedKinematics", "Contact": "ContactEHL", "Body": "VerticalDynamics",
+        "Friction": "FrictionMixedEHL", "Rough": "FrictionMixedEHL"}  # two instances, one file
+RTOL = 1e-11  # round-off: libcosim counts integer ns, its FMUs see t off by ~1e-19 s (worst seen 9e-14)
+
+
+def make(folder, fmu_dir, parameters):
+    """Write the scenario (``parameters``: instance -> {name: value}), load it and export it."""
+    text = '[experiment]\nstart = 0.0\nstop = 2e-4\nstep = 1e-6\nalgorithm = "jacobi"\n'
+    for inst, fmu in FMUS.items():
+        values = ", ".join(f"{k} = {json.dumps(v)}" for k, v in parameters.get(inst, {}).items())
+        text += f'[components.{inst}]\nfmu = "{fmu}.fmu"\nparameters = {{ {values} }}\n'
+    text += "".join(f'[[connections]]\nfrom = "{a}"\nto = "{b}"\n' for a, b in WIRES)
+    (folder / "ssp_test.toml").write_text(text)
+    sys_ = system.load(folder / "ssp_test.toml", fmu_dir=fmu_dir)
+    return sys_, ssp.export_ssp(sys_, folder / "ssp_test.ssp")
+
+
+def outputs(sys_):
+    return [f"{i}.{n}" for i, vs in sys_.variables.items() for n, v in vs.items() if v.causality == "output"]
+
+
+def run_fmpy(sys_, package):
+    """fmpy's rows: row k holds the values read after the step t_k -> t_k + h (here one row more
+    than steps: its summed t falls short of stop)."""
+    exp = sys_.experiment
+    return simulate_ssp(str(package), start_time=exp.start, stop_time=exp.stop, step_size=exp.step,
+                        parameter_set=ssp.parameter_set(sys_))
+
+
+def steps(sys_):
+    exp = sys_.experiment
+    return round((exp.stop - exp.start) / exp.step)
+
+
+def assert_same(actual, expected, names):
+    for name in names:
+        scale = np.abs(expected[name]).max()
+        np.testing.assert_allclose(actual[name], expected[name], rtol=RTOL, atol=RTOL * scale, err_msg=name)
+
+
+@pytest.fixture(scope="module")
+def lc_case(tmp_path_factory, fmu_dir):
+    return make(tmp_path_factory.mktemp("lc"), fmu_dir, LIBCOSIM)
+
+
+@pytest.fixture(scope="module")
+def fmpy_case(tmp_path_factory, fmu_dir):
+    return make(tmp_path_factory.mktemp("fmpy"), fmu_dir, FMPY)
+
+
+# -- structure ---------------------------------------------------------------------------------
+def test_ssd_structure(lc_case):
+    sys_, package = lc_case
+    with zipfile.ZipFile(package) as zf:
+        names = zf.namelist()
+        root = ET.fromstring(zf.read("SystemStructure.ssd"))
+    assert sorted(names) == ["SystemStructure.ssd", *sorted(f"resources/{f}.fmu" for f in set(FMUS.values()))]
+    assert root.tag == f"{{{ssp.SSD}}}SystemStructureDescription" and root.get("version") == "1.0"
+    (system_el,) = root.findall("ssd:System", NS)
+    comps = {c.get("name"): c for c in system_el.findall("ssd:Elements/ssd:Component", NS)}
+    assert list(comps) == list(sys_.components)
+    for name, comp in comps.items():
+        assert comp.get("source") == f"resources/{sys_.components[name].fmu.name}"
+        assert comp.get("type") == "application/x-fmu-sharedlibrary"
+    kinds = {(c.get("name"), c.get("kind"), c[0].tag.split("}")[1])
+             for c in comps["Body"].findall("ssd:Connectors/ssd:Connector", NS)}
+    assert ("F_contact", "input", "Real") in kinds and ("y", "output", "Real") in kinds
+    assert ("mass", "parameter", "Real") in kinds
+    assert not {"F_ext", "K_contact", "C_contact"} & {k[0] for k in kinds}  # unconnected inputs
+    wires = [tuple(f"{c.get(f'{end}Element')}.{c.get(f'{end}Connector')}" for end in ("start", "end"))
+             for c in system_el.findall("ssd:Connections/ssd:Connection", NS)]
+    assert wires == WIRES
+
+    def bindings(inst):
+        path = ("ssd:ParameterBindings/ssd:ParameterBinding/ssd:ParameterValues/ssv:ParameterSet/"
+                "ssv:Parameters/ssv:Parameter")
+        return {p.get("name"): (p[0].tag.split("}")[1], p[0].get("value"))
+                for p in comps[inst].findall(path, NS)}
+
+    assert bindings("Feed") == {"profile": ("String", "oscillating"), "mean_velocity": ("Real", "0.0"),
+                                "frequency": ("Real", "40.0")}
+    assert bindings("Contact") == {"preload": ("Real", "8000.0")}
+    assert bindings("Rough") == {"rollers_per_groove": ("Integer", "18")}
+    assert bindings("Body") == {}
+    exp = root.find("ssd:DefaultExperiment", NS)
+    assert (float(exp.get("startTime")), float(exp.get("stopTime"))) == (0.0, 2e-4)
+    algorithm = exp.find("ssd:Annotations/ssc:Annotation[@type='com.opensimulationplatform']/"
+                         "osp:Algorithm/osp:FixedStepAlgorithm", NS)
+    assert float(algorithm.get("baseStepSize")) == 1e-6
+
+
+def test_ssd_validates_against_the_ssp_schema(lc_case):
+    from fmpy.ssp.ssd import read_ssd  # validates against the SSP 1.0 XML schema
+
+    assert read_ssd(str(lc_case[1])).system.name == "ssp_test"
+
+
+# -- runs --------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def lc_run(lc_case):
+    sys_, package = lc_case
+    return ssp.run_libcosim(package, outputs(sys_), steps(sys_))
+
+
+@pytest.fixture(scope="module")
+def fmpy_run(fmpy_case):
+    return run_fmpy(*fmpy_case)
+
+
+def test_libcosim_matches_master(lc_case, lc_run):
+    sys_, _ = lc_case
+    expected = master.simulate(sys_).recording
+    time, columns = lc_run
+    np.testing.assert_allclose(time, expected.time, rtol=0, atol=1e-15)
+    assert_same(columns, expected.columns, outputs(sys_))
+
+
+def test_fmpy_matches_master(fmpy_case, fmpy_run):
+    sys_, _ = fmpy_case
+    n, expected = steps(sys_), master.simulate(sys_).recording
+    np.testing.assert_allclose(fmpy_run["time"][:n], expected.time[:n], rtol=0, atol=1e-15)
+    assert_same({k: fmpy_run[k][:n] for k in outputs(sys_)},
+                {k: v[1:] for k, v in expected.columns.items()}, outputs(sys_))
+
+
+def test_fmpy_matches_libcosim(fmpy_case, fmpy_run):
+    sys_, package = fmpy_case
+    n, names = steps(sys_), outputs(sys_)
+    _, columns = ssp.run_libcosim(package, names, n)
+    assert_same({k: fmpy_run[k][:n] for k in names}, {k: v[1:] for k, v in columns.items()}, names)
+
+
+def check_parameters_reached(time, columns, feed_velocity):
+    """Feed.u follows the bound profile; Contact's first loads are preload / (4 N) with the bound
+    preload; Rough, a FrictionMixedEHL with the same inputs as Friction, differs only by its
+    bound Integer parameter."""
+    np.testing.assert_allclose(columns["Feed.u"], feed_velocity(time), rtol=1e-12, atol=1e-15)
+    assert columns["Contact.F_upper"][0] == pytest.approx(8000.0 / 80)
+    with pytest.raises(AssertionError):
+        assert_same(columns, {"Rough.F_friction": columns["Friction.F_friction"]}, ["Rough.F_friction"])
+
+
+def test_parameters_reach_libcosim(lc_run):
+    check_parameters_reached(*lc_run, lambda t: -0.25 * np.sin(2 * np.pi * 40.0 * t))
+
+
+def test_parameters_reach_fmpy(fmpy_case, fmpy_run):
+    w = 2 * np.pi * 5.0
+    time = fmpy_run["time"] + fmpy_case[0].experiment.step  # row k holds the values at t_k + h
+    check_parameters_reached(time, fmpy_run, lambda t: 0.2919 * np.sin(w * t) + 0.0178 * np.sin(3 * w * t))
+
+
+# -- bad input ---------------------------------------------------------------------------------
+def test_export_into_a_missing_folder_names_it(lc_case, tmp_path):
+    with pytest.raises(FileNotFoundError, match="no_such_folder"):
+        ssp.export_ssp(lc_case[0], tmp_path / "no_such_folder" / "x.ssp")
+
+
+def test_export_of_a_vanished_fmu_names_it(fmu_dir, tmp_path):
+    for fmu in set(FMUS.values()):
+        shutil.copy(fmu_dir / f"{fmu}.fmu", tmp_path)
+    sys_, _ = make(tmp_path, tmp_path, FMPY)
+    (tmp_path / "ContactEHL.fmu").unlink()
+    with pytest.raises(FileNotFoundError, match="Contact: FMU file .*ContactEHL.fmu does not exist"):
+        ssp.export_ssp(sys_, tmp_path / "again.ssp")
+    assert not (tmp_path / "again.ssp").exists()
+
+
+def test_parameter_set_refuses_what_fmpy_would_get_wrong(lc_case, fmpy_case):
+    with pytest.raises(ValueError, match="Feed.profile: fmpy's simulate_ssp cannot set String"):
+        ssp.parameter_set(lc_case[0])
+    sys_ = fmpy_case[0]
+    clash = dataclasses.replace(sys_, components={**sys_.components, "R": sys_.components["Body"]})
+    with pytest.raises(ValueError, match="Rough.rollers_per_groove: fmpy would also apply it to R"):
+        ssp.parameter_set(clash)
