@@ -63,6 +63,7 @@ to_damping = "Body.C_contact"
 
 [record]
 variables = [{record}]
+interval = 5e-6          # s: 200 kHz sampling, spectra to 100 kHz
 
 [plots]
 time = ["Body.y", "Contact.F_upper", "Contact.F_lower"]
@@ -87,7 +88,7 @@ RECORD = ["Feed.u", "Body.y", "Body.y_dot", "Contact.F_contact", "Contact.F_uppe
 
 
 def scenario(name, description, amplitude=0.0, frequency=0.0, contact="ContactEHL",
-             friction=False, step=1e-6):
+             friction=False, step=2e-6):
     record = RECORD + (["Friction.F_friction"] if friction else [])
     return TEMPLATE.format(
         name=name, description=description, amplitude=amplitude, frequency=frequency,

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import csv
 import json
+from array import array
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -35,8 +36,8 @@ class Recorder:
 
     def __init__(self, names: list[str], units: dict[str, str], interval: float = 0.0):
         self.names, self.units, self.interval = names, units, interval
-        self._time: list[float] = []
-        self._rows: list[list[float]] = []
+        self._time = array("d")  # flat arrays: nothing for the garbage collector to traverse
+        self._rows = array("d")
         self._next = -np.inf
 
     def due(self, t: float) -> bool:
@@ -45,10 +46,10 @@ class Recorder:
     def sample(self, t: float, row: list[float], force: bool = False) -> None:
         if force or t >= self._next:
             self._time.append(t)
-            self._rows.append(row)
+            self._rows.extend(row)
             self._next = t + self.interval * (1 - 1e-9)
 
     def recording(self) -> Recording:
-        data = np.array(self._rows, dtype=float).reshape(len(self._rows), len(self.names))
+        data = np.array(self._rows, dtype=float).reshape(len(self._time), len(self.names))
         return Recording(np.array(self._time), {n: data[:, i] for i, n in enumerate(self.names)},
                          {n: self.units[n] for n in self.names})

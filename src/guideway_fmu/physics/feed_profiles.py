@@ -40,20 +40,27 @@ class FeedProfile:
         self.validate()
 
 
-def _result(t: np.ndarray, *values):
+def _time(t):
+    """A float stays a float (math fast path of :func:`_sine`); anything else becomes an array."""
+    return t if isinstance(t, float) else np.asarray(t, dtype=float)
+
+
+def _result(t, *values):
     """Broadcast the values to the shape of ``t``; plain floats for a scalar ``t``."""
-    if t.ndim == 0:
+    if isinstance(t, float) or t.ndim == 0:
         return tuple(float(v) for v in values)
     return tuple(v + np.zeros(t.shape) for v in values)
 
 
 def _sine(t: np.ndarray, amplitude: float, omega: float, phase: float):
     """(x, u, a) of u = amplitude sin(omega t + phase), omega [rad/s], x(0) = 0."""
+    trig = math if isinstance(t, float) else np
     arg = omega * t + phase
+    cos_arg = trig.cos(arg)
     return (
-        amplitude / omega * (np.cos(phase) - np.cos(arg)),
-        amplitude * np.sin(arg),
-        amplitude * omega * np.cos(arg),
+        amplitude / omega * (math.cos(phase) - cos_arg),
+        amplitude * trig.sin(arg),
+        amplitude * omega * cos_arg,
     )
 
 
@@ -82,7 +89,7 @@ class BiHarmonic(FeedProfile):
         })
 
     def evaluate(self, t):
-        t = np.asarray(t, dtype=float)
+        t = _time(t)
         omega = 2.0 * np.pi * self.frequency
         first = _sine(t, self.amplitude1, omega, self.phase1)
         third = _sine(t, self.amplitude2, 3.0 * omega, self.phase2)
@@ -113,7 +120,7 @@ class Oscillating(FeedProfile):
         })
 
     def evaluate(self, t):
-        t = np.asarray(t, dtype=float)
+        t = _time(t)
         x, u, a = _sine(t, -self.amplitude, 2.0 * np.pi * self.frequency, 0.0)
         return _result(t, self.mean * t + x, self.mean + u, a)
 
@@ -132,7 +139,7 @@ class Constant(FeedProfile):
         checks.check_fields(self, {"velocity": checks.finite})
 
     def evaluate(self, t):
-        t = np.asarray(t, dtype=float)
+        t = _time(t)
         return _result(t, self.velocity * t, self.velocity, 0.0)
 
     def velocity_at(self, t: float) -> float:

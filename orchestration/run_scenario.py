@@ -1,0 +1,40 @@
+"""Run a scenario through guideway_fmu's Python API: load, simulate, write CSV and plots.
+
+The same as `guideway-fmu run`, spelled out; compare drive_with_fmpy.py for what the master does.
+
+    python run_scenario.py                                  # 9000 N at 4500 Hz, 0.01 s
+    python run_scenario.py scenarios/paper000_unloaded.toml --stop 0.05
+"""
+import argparse
+from pathlib import Path
+
+from guideway_fmu.cosim import master, plots, system
+
+HERE = Path(__file__).resolve().parent
+
+p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+p.add_argument("scenario", type=Path, nargs="?", default=HERE / "scenarios/paper000_9000N_4500Hz.toml")
+p.add_argument("--stop", type=float, default=0.01, help="simulated time [s] (default 0.01)")
+p.add_argument("--out", type=Path, default=HERE.parent / "out/run_scenario", help="output folder")
+p.add_argument("--fmus", type=Path, default=None, help="take the FMUs from this folder by file name")
+args = p.parse_args()
+
+s = system.load(args.scenario, args.fmus)  # checked against every FMU's modelDescription
+s = s.with_changes(stop=args.stop)  # also step=... [s], algorithm="gauss-seidel", ...
+result = master.simulate(s, progress=True)  # raises master.SimulationError if an FMU fails
+args.out.mkdir(parents=True, exist_ok=True)
+csv = result.recording.write_csv(args.out / "results.csv")  # + results.units.json
+
+# The scenario's [plots] table: lists of signals per kind, plus skip [s], f_max [Hz], window [s]
+options = {k: s.plots[k] for k in ("skip", "f_max", "window") if k in s.plots}
+options["skip"] = min(options.get("skip", 0.0), args.stop / 2)  # keep a spectrum for short runs
+kinds = {k: s.plots[k] for k in ("time", "spectrum", "film", "envelope") if s.plots.get(k)}
+pngs = plots.plot_all(result.recording, kinds, args.out, **options)
+
+summary = result.summary()
+print(f"{summary['scenario']}: {summary['steps']} steps ({summary['rejected']} rejected), "
+      f"wall {summary['wall_time_s']:.2f} s, of which FMI calls {summary['fmi_call_time_s']:.2f} s")
+f_upper = result.recording.columns.get("Contact.F_upper")  # N, load of one upper roller
+if f_upper is not None:
+    print(f"Contact.F_upper: min {f_upper.min():.2f} N, max {f_upper.max():.2f} N")
+print("wrote", csv, *(png.name for png in pngs))
