@@ -15,9 +15,11 @@ moves values between FMU instances (see master.py). Inputs are held over each st
   (the explicit schemes need omega h < 4 zeta, never stable without damping). For a nonlinear
   force the defect d = |F1 - F0 - K0 dx - C0 dv| at the end of the step is the local error of
   the linearisation (O(h^2)); with ``tolerance`` > 0 each step is accepted when
-  d <= tolerance * max(|F1 - F0|, |K0 dx|), else every instance is rolled back (get/set FMU
-  state) and the step retried shorter; the next step is h * clip(0.9 tolerance / r, 0.2, 2),
-  r the ratio above (r ~ h). An FMU that discards a step is retried the same way.
+  r = d / max(|F1 - F0|, |K0 dx|, 0.01 max|F|) <= tolerance (max|F| the largest force so far:
+  where a contact opens, F'' is unbounded and the force change alone would make the step
+  vanish), else every instance is rolled back (get/set FMU state) and the step retried shorter;
+  the next step is h * clip(0.9 sqrt(tolerance / r), 0.2, 2). An FMU that discards a step is
+  retried the same way.
 """
 from __future__ import annotations
 
@@ -105,7 +107,7 @@ class Stabilised(GaussSeidel):
             if saved is None:
                 return True, h
             ratio = max((tg.defect(*b) for tg, b in zip(self.tangents, before)), default=0.0)
-            grow = min(2.0, max(0.2, 0.9 * self.tolerance / ratio)) if ratio > 0 else 2.0
+            grow = min(2.0, max(0.2, 0.9 * math.sqrt(self.tolerance / ratio))) if ratio > 0 else 2.0
             next_h = min(self.max_step, max(self.min_step, h * grow))
             if ratio <= self.tolerance or h <= self.min_step:
                 return True, next_h
@@ -144,6 +146,7 @@ class Tangent:
         self.v = bus.source_of(inst, spec.velocity) if spec.velocity else None
         self.k_key = _slope_key(spec, spec.stiffness, spec.position)
         self.c_key = _slope_key(spec, spec.damping, spec.velocity) if spec.velocity else None
+        self.largest = 0.0  # largest |force| seen: the absolute scale of the defect
         self.k = self._slope(spec.stiffness, spec.position)
         self.c = self._slope(spec.damping, spec.velocity) if spec.velocity else None
 
@@ -186,9 +189,12 @@ class Tangent:
         dx = vals[self.x] - x0 if self.x else 0.0
         dv = vals[self.v] - v0 if self.v else 0.0
         predicted = k * dx + c * dv
-        scale = max(abs(f1 - f0), abs(predicted))
+        self.largest = max(self.largest, abs(f0), abs(f1))
+        scale = max(abs(f1 - f0), abs(predicted), DEFECT_FLOOR * self.largest)
         d = abs(f1 - f0 - predicted)
         return d / scale if scale > 0 else (0.0 if d == 0 else math.inf)
 
+
+DEFECT_FLOOR = 0.01  # the defect is measured against at least 1 % of the largest force seen
 
 ALGORITHMS = {a.name: a for a in (Jacobi, GaussSeidel, Stabilised)}

@@ -193,8 +193,8 @@ def simulate(system: System, progress: bool = False) -> Result:
         failing = getattr(exc, "instance", None)
         logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
                          if failing is None or n == failing)
-        result.error = (f"{system.name}: FMU instance {failing!r} failed at t = "
-                        f"{getattr(exc, 'time', float('nan')):.9g} s: {exc}\n{logs}")
+        when = f"at t = {exc.time:.9g} s" if hasattr(exc, "time") else "during initialisation"
+        result.error = f"{system.name}: FMU instance {failing!r} failed {when}: {exc}\n{logs}"
         result.recording = recorder.recording()
         raise SimulationError(result.error, result) from exc
     finally:
