@@ -114,7 +114,7 @@ def test_squeeze_factor_show_effect_regularised_bounded_on_grid():
 
 def test_squeeze_factor_limiting_case_regularised_equals_published_where_well_behaved():
     u = np.array([1e-4, 0.01, SPEED, 1.0])[:, None]
-    s = np.array([-5.0, -1.0, -0.1, 0.0, 0.1, 0.25])[None, :]  # below S_MAX = ln(0.99/0.75) = 0.2776
+    s = np.array([-4.5, -1.0, -0.1, 0.0, 0.1, 0.25])[None, :]  # inside (S_MIN, S_MAX) = (-4.61, 0.2776)
     h_dot = s * u / film.SQUEEZE_GAIN
     np.testing.assert_allclose(film.squeeze_factor(h_dot, u),
                                film.squeeze_factor(h_dot, u, regularised=False), rtol=1e-14)
@@ -123,10 +123,8 @@ def test_squeeze_factor_limiting_case_regularised_equals_published_where_well_be
 @pytest.mark.parametrize("u", [1e-6, 0.01, SPEED, -SPEED, 3.0])
 def test_film_rate_inverts_squeeze_factor(u):
     h_s = 1e-6  # m, unsqueezed film
-    # Inside the unclipped range (S_MIN, S_MAX). Below s = -10 the factor is 1 - O(e^s) and h / h_s
-    # no longer resolves s in double precision (at s = -30: 1 - 7e-14), so the inversion is checked
-    # where it is well conditioned.
-    s = np.linspace(-10.0, film.S_MAX * 0.99, 41)
+    # Inside the unclipped range (S_MIN, S_MAX) = (ln 0.01, ln(0.99 / 0.75)).
+    s = np.linspace(film.S_MIN * 0.99, film.S_MAX * 0.99, 41)
     h_dot = s * abs(u) / film.SQUEEZE_GAIN
     h = h_s * film.squeeze_factor(h_dot, u)
     np.testing.assert_allclose(film.film_rate(h, h_s, u), h_dot, rtol=1e-9, atol=1e-14 * abs(u))

@@ -191,5 +191,8 @@ def run_libcosim(package, names, steps):
         # libcosimpy 0.0.6 drops as many samples as it finds step numbers 0: read step 0 alone
         _, _, first = observer.time_series_real_samples(i, ref, from_step=0, sample_count=2)
         times, _, rest = observer.time_series_real_samples(i, ref, from_step=1, sample_count=steps)
+        if len(first) != 1 or len(rest) != steps:
+            raise RuntimeError(f"libcosim: {package} recorded {len(first) + len(rest)} samples of "
+                               f"{name}, expected {steps + 1} (did a step fail?)")
         columns[name] = np.array([first[0], *rest])
     return np.array([0, *times]) * 1e-9, columns

@@ -17,7 +17,10 @@ This module regularises it in two documented ways:
 
 1. the direction of entrainment does not matter, so |u| is used;
 2. the exponent s = 132 h_dot / |u| is clipped to [S_MIN, S_MAX], which bounds the factor to
-   [FACTOR_MIN, 1): the film never falls below 1 % of the unsqueezed value and never turns negative.
+   [FACTOR_MIN, 1 - 0.75 FACTOR_MIN]: the film never falls below 1 % of the unsqueezed value and
+   never turns negative, and it thins at most at |u| ln(1/FACTOR_MIN) / 132. (A clip far below,
+   such as s = -30, changes the factor by less than 1 % but makes the film relation as stiff as
+   e^30 |u| / h_s just below h = h_s: an implicit integrator then crawls at each feed reversal.)
 
 :func:`film_rate` solves the same relation for h_dot, h_dot = |u| s / 132 with
 s = ln((1 - h / h_s) / 0.75), which is how the contact FMU integrates the film as a state: it is
@@ -38,7 +41,7 @@ SQUEEZE_GAIN = 132.0
 SQUEEZE_WEIGHT = 0.75
 FACTOR_MIN = 0.01
 S_MAX = float(np.log((1.0 - FACTOR_MIN) / SQUEEZE_WEIGHT))
-S_MIN = -30.0
+S_MIN = float(np.log(FACTOR_MIN))
 # Loads below this dimensionless load Fbar = F / (E' R l) do not thin the film further: both
 # laws diverge as F -> 0, far outside the range they were fitted to (about 1e-6 to 1e-3).
 LOAD_FLOOR = 1e-7
