@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import gc
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
@@ -36,7 +36,6 @@ class Result:
     wall_time: float = 0.0  # s, the stepping loop
     fmi_time: float = 0.0  # s, inside FMI calls during the loop
     error: str | None = None
-    stats: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         return {"scenario": self.system, "algorithm": self.algorithm,
@@ -44,7 +43,7 @@ class Result:
                 "wall_time_s": self.wall_time, "fmi_call_time_s": self.fmi_time,
                 "master_overhead_s": self.wall_time - self.fmi_time,
                 "time_span_s": [float(self.recording.time[0]), float(self.recording.time[-1])]
-                if len(self.recording.time) else [], "error": self.error, **self.stats}
+                if len(self.recording.time) else [], "error": self.error}
 
 
 class SimulationError(RuntimeError):
