@@ -3,6 +3,7 @@ import zipfile
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from guideway_fmu import cli, demo
 from guideway_fmu.physics import guideway
@@ -87,3 +88,28 @@ def test_cli_demo_refuses_bad_stop_before_any_work(tmp_path, capsys):
                      "--stop", "-1"]) == 2
     assert "--stop" in capsys.readouterr().err
     assert not (tmp_path / "f").exists()
+
+
+def test_verify_refuses_a_system_the_reference_cannot_model_before_co_simulating(
+        fmu_dir, tmp_path, monkeypatch):
+    from guideway_fmu import verify
+    from guideway_fmu.cosim import master, system
+    path = tmp_path / "free.toml"
+    path.write_text(f'[experiment]\nstop = 1e-3\nstep = 1e-5\n[components.Body]\n'
+                    f'fmu = "{fmu_dir}/VerticalDynamics.fmu"\n')  # F_contact fed by no contact
+    monkeypatch.setattr(master, "simulate", lambda *a, **k: pytest.fail("co-simulation ran"))
+    with pytest.raises(ValueError, match="Body"):
+        verify.verify(system.load(path))
+
+
+def test_run_with_an_fmu_that_cannot_be_instantiated_is_a_clear_error(fmu_dir, tmp_path, capsys):
+    broken = tmp_path / "VerticalDynamics.fmu"
+    with zipfile.ZipFile(fmu_dir / "VerticalDynamics.fmu") as src, zipfile.ZipFile(broken, "w") as dst:
+        for item in src.infolist():  # the same FMU without its binaries
+            if not item.filename.startswith("binaries/"):
+                dst.writestr(item, src.read(item))
+    path = tmp_path / "s.toml"
+    path.write_text(f'[experiment]\nstop = 1e-3\nstep = 1e-5\n[components.Body]\nfmu = "{broken}"\n')
+    assert cli.main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert "cannot instantiate Body" in err and "Traceback" not in err

@@ -93,6 +93,11 @@ class Reference:
     rtol: float
 
 
+def check(system) -> None:
+    """Raise ValueError naming the component if the reference cannot model ``system``."""
+    _Model(system)
+
+
 def simulate(system, times=None, rtol: float = 1e-10, method: str = "LSODA") -> Reference:
     """Integrate ``system`` (a checked ``cosim.system.System``) from experiment.start.
 

@@ -25,7 +25,9 @@ def compare(time, columns: dict, reference) -> tuple[dict, dict]:
 
 
 def verify(system: System) -> dict:
-    """Run the co-simulation and the reference on the same time grid and compare them."""
+    """Run the co-simulation and the reference on the same time grid and compare them; a system
+    the reference cannot model is refused before the co-simulation runs."""
+    monolithic.check(system)
     result = master.simulate(system)
     rec = result.recording
     reference = monolithic.simulate(system, times=rec.time)

@@ -169,7 +169,11 @@ def simulate(system: System, progress: bool = False) -> Result:
     try:
         for name in order(system):  # initialise sources first: inputs at t0 from their outputs
             comp = system.components[name]
-            instances[name] = FmuInstance(comp.fmu, name)
+            try:
+                instances[name] = FmuInstance(comp.fmu, name)
+            except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
+                raise SimulationError(f"{system.name}: cannot instantiate {name} from {comp.fmu}: "
+                                      f"{exc}", result) from exc
         bus = Bus(system, instances, exchanged, observed, links)
         for name in order(system):
             inst = instances[name]
