@@ -561,3 +561,25 @@ def test_committed_fmus_readme_is_up_to_date(fmu_dir):
     committed = Path(__file__).resolve().parents[1] / "fmus" / "README.md"
     assert committed.read_text() == (fmu_dir / "README.md").read_text(), (
         "fmus/README.md is stale: run `guideway-fmu build` and commit it")
+
+
+def test_ehl_film_integration_matches_tight_scipy_solution_of_the_array_physics(open_fmu):
+    # Films start steady at u = 0.05 m/s, then the feed jumps to 0.29 m/s with the body moving
+    # at 2 mm/s: the FMU's Heun substeps against solve_ivp (DOP853, rtol 1e-11) of
+    # guideway.film_rates, the array functions (independent of the float kernel).
+    from scipy.integrate import solve_ivp
+    from guideway_fmu.physics import guideway as gw
+    y0, v, u, h, n = 1e-7, 2e-3, 0.29, 2e-6, 250
+    contact = open_fmu("ContactEHL", y=y0, y_dot=v, u=0.05)
+    films = [contact.get("h_upper"), contact.get("h_lower")]
+    contact.set(u=u)
+    g = gw.Guideway()
+    for i in range(n):
+        contact.set(y=y0 + v * i * h)
+        contact.step(h)
+    sol = solve_ivp(lambda t, f: gw.film_rates(g, y0 + v * t, f[0], f[1], u), (0.0, n * h), films,
+                    method="DOP853", rtol=1e-11, atol=1e-20)
+    change = abs(sol.y[0, -1] - films[0])
+    assert change > 1e-8  # the film really moved (from its 0.05 m/s value towards 0.29 m/s)
+    assert contact.get("h_upper") == pytest.approx(sol.y[0, -1], abs=1e-4 * change)
+    assert contact.get("h_lower") == pytest.approx(sol.y[1, -1], abs=1e-4 * abs(sol.y[1, -1] - films[1]))
