@@ -3,6 +3,7 @@ for this session (``fmu_dir``), with short stop times."""
 from __future__ import annotations
 
 import csv
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -57,3 +58,15 @@ def test_run_scenario_unloaded(fmu_dir, tmp_path):
     f_upper = _column(tmp_path / "out" / "results.csv", "Contact.F_upper")
     assert all(PRELOAD_PER_ROLLER < f < 1.5 * PRELOAD_PER_ROLLER for f in f_upper)
     assert (tmp_path / "out" / "time.png").is_file()
+
+
+def test_reference_sensitivity_reports_a_small_growing_change(fmu_dir, tmp_path):
+    scenario = ORCHESTRATION / "scenarios/paper000_9000N_2500Hz_dry.toml"
+    proc = _run("reference_sensitivity.py", scenario, "--fmus", fmu_dir, "--stop", 2e-3, cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    report = json.loads(proc.stdout)
+    assert report["scenario"] == "paper000_9000N_2500Hz_dry"
+    # a 1e-12 m offset on a ~1 um approach: a change of order 1e-6 of the range, not zero
+    assert 0 < report["rms_offset"] < 1e-4
+    assert 0 < report["rms_rtol_1e-12"] < 1e-4
+    assert len(report["rms_offset_per_eighth"]) == 8
