@@ -30,6 +30,16 @@ FMUS = {
     "FrictionMixedEHL": "friction",
     "FrictionCoulomb": "friction",
 }
+#: FMUs of the model extensions that the discrepancy workflow (diagnose/) adds to a rig model
+EXTENSION_FMUS = {
+    "HorizontalRig": "horizontal_rig",
+    "FrictionStribeck": "friction_extensions",
+    "FrictionDahl": "friction_extensions",
+    "FrictionPositionDependent": "friction_extensions",
+    "FrictionPreloadLoss": "friction_extensions",
+    "FrictionBallToBall": "friction_extensions",
+}
+ALL_FMUS = {**FMUS, **EXTENSION_FMUS}
 
 
 # pythonfmu 0.7 releases one reference it does not own to the slave script's namespace each time
@@ -60,13 +70,14 @@ def code_hash() -> str:
 
 
 def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[Path]:
-    """Build the named FMUs (default: all) into ``out_dir`` and write its README.md."""
+    """Build the named FMUs (default: all of FMUS; EXTENSION_FMUS by name) into ``out_dir`` and
+    write its README.md."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     names = list(FMUS) if names is None else names
-    unknown = [n for n in names if n not in FMUS]
+    unknown = [n for n in names if n not in ALL_FMUS]
     if unknown:
-        raise ValueError(f"unknown FMU {unknown[0]!r}; known FMUs: {', '.join(FMUS)}")
+        raise ValueError(f"unknown FMU {unknown[0]!r}; known FMUs: {', '.join(ALL_FMUS)}")
     tag = code_hash()
     built = []
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_build_") as tmp:
@@ -81,7 +92,7 @@ def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[
                     shutil.copy2(path, target)
                 script = tmp / f"{name}_{tag}.py"
                 script.write_text(SLAVE_SCRIPT.format(name=name, package=package,
-                                                      module=FMUS[name]))
+                                                      module=ALL_FMUS[name]))
                 fmu = FmuBuilder.build_FMU(script, dest=out_dir / f"{name}.fmu",
                                            project_files=[tmp / package],
                                            canGetAndSetFMUstate=True)

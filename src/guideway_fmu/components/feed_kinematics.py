@@ -8,9 +8,9 @@ from .base import GuidewaySlave
 class FeedKinematics(GuidewaySlave):
     """Feed position, velocity and acceleration from a chosen profile or from the u_cmd input.
 
-    Analytic profiles and the table are evaluated exactly at the communication points. With
-    profile "input", u follows u_cmd, x integrates u_cmd held over each step exactly, and a is
-    the backward difference of u_cmd over the last step.
+    Analytic profiles, the table and the replay are evaluated exactly at the communication
+    points. With profile "input", u follows u_cmd, x integrates u_cmd held over each step
+    exactly, and a is the backward difference of u_cmd over the last step.
     """
 
     description = __doc__.splitlines()[0]
@@ -33,7 +33,8 @@ class FeedKinematics(GuidewaySlave):
         self.parameter("a_max", tr.a_max, "m/s2", "trapezoid: acceleration limit")
         self.parameter("t_start", tr.t_start, "s", "trapezoid: start time of the move")
         self.parameter("table_file", "", None,
-                       "table: CSV with columns time and feed_velocity (or u)")
+                       "table: CSV with columns time and feed_velocity (or u); replay: CSV with "
+                       "time, feed_position, feed_velocity, feed_acceleration")
         self.input("u_cmd", 0.0, "m/s", "commanded velocity, used when profile is 'input'")
         self.output("x", "m", "feed position")
         self.output("u", "m/s", "feed velocity", depends=("u_cmd",))

@@ -25,12 +25,12 @@ import numpy as np
 from . import checks
 
 __all__ = [
-    "FeedProfile", "BiHarmonic", "Oscillating", "Constant", "Trapezoid", "Table",
+    "FeedProfile", "BiHarmonic", "Oscillating", "Constant", "Trapezoid", "Table", "Replay",
     "make_profile", "from_parameters", "PROFILES",
 ]
 
 #: profile names of the FeedKinematics FMU; "input" takes the velocity from an input instead
-PROFILES = ("biharmonic", "oscillating", "constant", "trapezoid", "table", "input")
+PROFILES = ("biharmonic", "oscillating", "constant", "trapezoid", "table", "replay", "input")
 
 
 class FeedProfile:
@@ -332,12 +332,92 @@ class Table(FeedProfile):
         return cls(time=tuple(values[:, 0]), velocity=tuple(values[:, 1]))
 
 
+@dataclass(frozen=True)
+class Replay(FeedProfile):
+    """Replay of a measured motion: ``time`` [s] with ``position`` [m], ``velocity`` [m/s] and
+    ``acceleration`` [m/s^2] given at every sample, each interpolated linearly and held at the
+    end values outside the table. The columns need not be consistent with each other: a replay
+    reproduces the samples as measured (or as derived from the measurement).
+    """
+
+    time: tuple
+    position: tuple
+    velocity: tuple
+    acceleration: tuple
+
+    COLUMNS = ("time", "feed_position", "feed_velocity", "feed_acceleration")
+
+    def __post_init__(self):
+        for field in ("time", "position", "velocity", "acceleration"):
+            values = np.asarray(getattr(self, field), dtype=float)
+            if values.ndim != 1:
+                raise ValueError(f"Replay.{field} must be one-dimensional, got shape {values.shape}")
+            object.__setattr__(self, field, tuple(values.tolist()))
+        super().__post_init__()
+
+    def validate(self) -> None:
+        time = np.array(self.time)
+        if time.size < 2:
+            raise ValueError(f"Replay.time must hold at least 2 samples, got {time.size}")
+        for field in ("position", "velocity", "acceleration"):
+            values = np.array(getattr(self, field))
+            if values.size != time.size:
+                raise ValueError(f"Replay.{field} must have as many samples as Replay.time "
+                                 f"({time.size}), got {values.size}")
+            problem = _table_problem(time, values)
+            if problem:
+                name, index, text = problem
+                raise ValueError(f"Replay.{field if name == 'velocity' else name}[{index}] {text}")
+
+    @cached_property
+    def _columns(self):
+        return tuple(np.array(c) for c in (self.time, self.position, self.velocity, self.acceleration))
+
+    def evaluate(self, t):
+        time, *columns = self._columns
+        return _result(_time(t), *(np.interp(t, time, c) for c in columns))
+
+    def velocity_at(self, t: float) -> float:
+        """u [m/s] at the time t [s] (float)."""
+        return float(np.interp(t, self._columns[0], self._columns[2]))
+
+    @classmethod
+    def from_csv(cls, path) -> "Replay":
+        """Read a comma-separated file whose header names the columns ``time``,
+        ``feed_position``, ``feed_velocity`` and ``feed_acceleration`` (others are ignored).
+
+        Rows are numbered as lines of the file, the header being row 1. Errors name the file,
+        the row and the column.
+        """
+        path = Path(path)
+        with path.open(newline="") as handle:
+            rows = list(csv.reader(handle))
+        header = [cell.strip() for cell in rows[0]] if rows else []
+        missing = [c for c in cls.COLUMNS if c not in header]
+        if missing:
+            raise ValueError(f"{path}: row 1: header {header} has no column {missing[0]!r}")
+        index = [header.index(c) for c in cls.COLUMNS]
+        values = np.empty((len(rows) - 1, len(index)))
+        for i, cells in enumerate(rows[1:]):
+            for j, k in enumerate(index):
+                try:
+                    values[i, j] = float(cells[k])
+                except (IndexError, ValueError):
+                    raise ValueError(f"{path}: row {i + 2}, column '{cls.COLUMNS[j]}': cannot read "
+                                     f"a number from {cells[k] if k < len(cells) else ''!r}") from None
+        try:
+            return cls(*values.T)
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
+
+
 _FACTORIES = {
     "biharmonic": BiHarmonic,
     "oscillating": Oscillating,
     "constant": Constant,
     "trapezoid": Trapezoid,
     "table": Table.from_csv,
+    "replay": Replay.from_csv,
 }
 
 
@@ -345,7 +425,8 @@ def make_profile(name: str, **params) -> FeedProfile:
     """Profile selected by name (case-insensitive), e.g. from an FMU string parameter.
 
     "biharmonic", "oscillating", "constant" and "trapezoid" take the fields of their
-    class as keywords; "table" takes ``path`` and calls ``Table.from_csv``.
+    class as keywords; "table" and "replay" take ``path`` and call ``Table.from_csv`` or
+    ``Replay.from_csv``.
     """
     key = name.strip().lower()
     if key not in _FACTORIES:
@@ -369,11 +450,11 @@ def from_parameters(profile, frequency, amplitude1, amplitude2, phase1, phase2, 
     name = profile.strip().lower()
     if name == "input":
         return None
-    if name == "table":
+    if name in ("table", "replay"):
         if not table_file:
-            raise ValueError("parameter table_file must name a CSV file when profile is 'table'")
+            raise ValueError(f"parameter table_file must name a CSV file when profile is '{name}'")
         try:
-            return Table.from_csv(table_file)
+            return _FACTORIES[name](table_file)
         except OSError as exc:
             raise ValueError(f"parameter table_file: cannot read {table_file!r}: "
                              f"{exc.strerror or exc}") from exc

@@ -1,0 +1,335 @@
+"""The baseline model of a horizontal drive rig and the candidate extensions, one per effect.
+
+Every model predicts the compared channel as a fixed part (m a for drive_force, 0 for
+friction_force) plus a linear combination of columns built from the physics laws
+(physics/friction_laws.py) plus a constant offset (the sensor zero). A candidate may have a few
+nonlinear settings (a Stribeck velocity, a pre-sliding distance, a wear distance, a number of
+position knots); for each setting the linear coefficients are a least-squares fit on the fit
+samples, and the setting with the lowest BIC on the fit samples is kept. :meth:`Candidate.fmu`
+turns the fitted coefficients into the friction FMU and parameters that carry the same law.
+
+Sign convention: the columns are the drive-force contributions -F_friction of unit parameters.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..physics import friction_laws
+from ..physics.friction import CoulombParams, coulomb_friction, regularised_sign
+from .run_io import MeasuredRun
+from .signals import Motion
+
+GRAVITY = 9.80665  # m/s^2
+SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
+
+
+@dataclass
+class Context:
+    """What the models need over all samples of a run."""
+
+    run: MeasuredRun
+    motion: Motion
+    y: np.ndarray  # the compared channel
+    fixed: np.ndarray  # part of it the baseline knows without fitting (m a or 0)
+    velocity_tolerance: float  # m/s, of the regularised sign
+    normal_load: float  # N, total load the Coulomb coefficient refers to
+    elements: int  # rolling elements per row (1 without [guideway])
+    sign: np.ndarray = field(init=False)
+    distance: np.ndarray = field(init=False)
+
+    def __post_init__(self):
+        self.sign = regularised_sign(self.motion.v, self.velocity_tolerance)
+        self.distance = friction_laws.running_distance(self.motion.x)
+
+    @classmethod
+    def of(cls, run: MeasuredRun, motion: Motion) -> "Context":
+        guideway = run.sections.get("guideway", {})
+        load = guideway.get("preload", 0.0) + run.moving_mass * GRAVITY + run.normal_force()
+        fixed = run.moving_mass * motion.a if run.channel == "drive_force" else np.zeros_like(motion.a)
+        limit = np.max(np.abs(motion.v)) * 1e-3
+        return cls(run, motion, np.asarray(run.columns[run.channel], dtype=float), fixed,
+                   float(limit), float(max(load, 1.0)), int(guideway.get("elements_per_row", 1)))
+
+    def coulomb_parameters(self, level: float) -> dict:
+        """FrictionCoulomb-interface parameters giving the Coulomb level ``level`` [N]."""
+        per_element = self.normal_load / (4 * self.elements)
+        return {"coefficient": level / self.normal_load, "rollers_per_groove": self.elements,
+                "velocity_tolerance": self.velocity_tolerance, "F_upper": per_element,
+                "F_lower": per_element}
+
+
+@dataclass
+class Fit:
+    """A fitted model: prediction over all samples, physical parameters and its FMU form."""
+
+    effect: str
+    setting: dict
+    coefficients: np.ndarray
+    prediction: np.ndarray
+    n_parameters: int
+    parameters: dict
+    fmu: str  # friction FMU name
+    fmu_parameters: dict
+    rig_mass: float
+    offset: float
+    uses_position: bool  # the friction FMU takes the feed position x
+
+
+class Candidate:
+    """Baseline (effect "none") or one effect: settings, columns and the FMU form."""
+
+    effect = "none"
+    signal = "time"  # the signal its residual shows against (plots)
+    fmu_name = "FrictionCoulomb"
+    uses_position = False
+
+    def settings(self, ctx: Context) -> list[dict]:
+        return [{}]
+
+    def columns(self, ctx: Context, setting: dict) -> np.ndarray:
+        """Columns (n, k) of the drive-force contribution of the law's linear parameters."""
+        unit = CoulombParams(coefficient=1.0, rollers_per_groove=1,
+                             velocity_tolerance=ctx.velocity_tolerance)  # level 2 (0.25 + 0.25) = 1
+        return -coulomb_friction(0.25, 0.25, ctx.motion.v, unit)[:, None]
+
+    def physical(self, ctx: Context, setting: dict, coef: np.ndarray) -> tuple[dict, dict] | None:
+        """(parameters, friction FMU parameters) of the fitted coefficients, None if unphysical."""
+        return self._coulomb(ctx, coef[0])
+
+    def rig_mass(self, ctx: Context, coef: np.ndarray) -> float:
+        return ctx.run.moving_mass
+
+    def penalty(self, columns: np.ndarray) -> np.ndarray | None:
+        """Rows appended to the least-squares system (regularisation), or None."""
+        return None
+
+    @staticmethod
+    def _coulomb(ctx, level):
+        if level < 0.0:
+            return None
+        return {"coulomb": float(level)}, ctx.coulomb_parameters(float(level))
+
+    def fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
+        """Best setting by BIC on the fit samples; None if every setting is unphysical."""
+        target = ctx.y - ctx.fixed
+        n = int(fit_mask.sum())
+        best = None
+        for setting in self.settings(ctx):
+            design = np.column_stack([self.columns(ctx, setting), np.ones_like(target)])
+            rows, rhs = design[fit_mask], target[fit_mask]
+            penalty = self.penalty(rows[:, :-1])
+            if penalty is not None:
+                rows = np.vstack([rows, np.column_stack([penalty, np.zeros(len(penalty))])])
+                rhs = np.concatenate([rhs, np.zeros(len(penalty))])
+            coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
+            rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
+            k = design.shape[1] + len(setting)
+            bic = n * np.log(max(rss, 1e-300) / n) + k * np.log(n)
+            if best is not None and bic >= best[0]:
+                continue
+            phys = self.physical(ctx, setting, coef[:-1])
+            if phys is not None:
+                best = (bic, setting, coef, design, k, phys)
+        if best is None:
+            return None
+        _, setting, coef, design, k, (params, fmu_params) = best
+        params = {**params, **{key: value for key, value in setting.items()},
+                  "offset": float(coef[-1])}
+        return Fit(self.effect, setting, coef, ctx.fixed + design @ coef, k, params,
+                   self.fmu_name, fmu_params, self.rig_mass(ctx, coef), float(coef[-1]),
+                   self.uses_position)
+
+
+class Lubrication(Candidate):
+    """Stribeck + viscous friction; settings: Stribeck velocity, shape and viscous exponents."""
+
+    effect, signal, fmu_name = "lubrication", "speed", "FrictionStribeck"
+
+    def settings(self, ctx):
+        vmax = float(np.max(np.abs(ctx.motion.v)))
+        return [{"stribeck_velocity": float(vs), "stribeck_exponent": d, "viscous_exponent": b}
+                for vs in vmax * np.logspace(-2.5, 0.0, 12) for d in (0.7, 1.0, 2.0)
+                for b in (0.5, 0.75, 1.0)]
+
+    def columns(self, ctx, setting):
+        v, tol = ctx.motion.v, ctx.velocity_tolerance
+        shape = (setting["stribeck_velocity"], setting["stribeck_exponent"], setting["viscous_exponent"])
+        unit = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]  # coulomb, static, viscous
+        return np.column_stack([-friction_laws.stribeck_friction(v, c, s, shape[0], cv, tol,
+                                                                 shape[1], shape[2])
+                                for c, s, cv in unit])
+
+    def physical(self, ctx, setting, coef):
+        coulomb, static, viscous = (float(c) for c in coef)
+        if coulomb < 0.0 or static < 0.0:
+            return None
+        params = {"coulomb": coulomb, "static": static, "viscous": viscous}
+        fmu = {**ctx.coulomb_parameters(coulomb), "static_coefficient": static / ctx.normal_load,
+               **setting, "viscous": viscous}
+        return params, fmu
+
+
+class PreslidingHysteresis(Candidate):
+    """Two Dahl elements in parallel; settings: their pre-sliding distances."""
+
+    effect, signal, fmu_name, uses_position = ("presliding_hysteresis", "displacement_since_reversal",
+                                               "FrictionDahl", True)
+    _states: tuple = ()
+
+    def z_start(self, ctx) -> float:
+        return float(np.sign(ctx.motion.v[0])) if not ctx.motion.standstill[0] else 0.0
+
+    def distances(self, ctx):
+        step = np.median(np.abs(np.diff(ctx.motion.x)))
+        stroke = np.ptp(ctx.motion.x)
+        return np.geomspace(max(0.3 * step, 1e-5 * stroke, 1e-9), max(0.1 * stroke, 1e-8), 16)
+
+    def settings(self, ctx):
+        d = self.distances(ctx)
+        return [{"presliding_distance": float(d[i]), "second_distance": float(d[j])}
+                for i in range(d.size) for j in range(i, d.size)]
+
+    def state(self, ctx, distance):
+        if not self._states or self._states[0] is not ctx:
+            d = self.distances(ctx)
+            z = friction_laws.dahl_state(ctx.motion.x, d, self.z_start(ctx))
+            self._states = (ctx, {float(v): z[:, i] for i, v in enumerate(d)})
+        return self._states[1][distance]
+
+    def columns(self, ctx, setting):
+        first, second = setting["presliding_distance"], setting["second_distance"]
+        states = [self.state(ctx, first)] + ([self.state(ctx, second)] if second != first else [])
+        return np.column_stack([-friction_laws.dahl_friction(z, 1.0) for z in states])
+
+    def physical(self, ctx, setting, coef):
+        levels = np.append(coef, 0.0)[:2]
+        if np.any(levels < 0.0) or levels.sum() <= 0.0:
+            return None
+        level = float(levels.sum())
+        params = {"coulomb": level, "second_share": float(levels[1]) / level}
+        fmu = {**ctx.coulomb_parameters(level), **setting,
+               "second_share": float(levels[1]) / level, "z_start": self.z_start(ctx)}
+        return params, fmu
+
+
+class _Table(Candidate):
+    """Coulomb level times a factor interpolated between equally spaced nodes of a signal;
+    settings: the number of nodes."""
+
+    law = staticmethod(friction_laws.position_dependent_friction)
+
+    def along(self, ctx) -> np.ndarray:
+        """The signal the table is over, at the samples."""
+        return ctx.motion.x
+
+    def node_counts(self, ctx):
+        return (3, 5, 9, 17, 33, 65, 129)
+
+    def settings(self, ctx):
+        return [{"nodes": k} for k in self.node_counts(ctx)]
+
+    def columns(self, ctx, setting):
+        s = self.along(ctx)
+        unit = np.eye(setting["nodes"])
+        return np.column_stack([-self.law(ctx.motion.v, s, 1.0, s.min(), s.max(), row,
+                                          ctx.velocity_tolerance) for row in unit])
+
+    def penalty(self, columns):
+        """Second differences of the node values, weighted by SMOOTHING of the columns' mean
+        square: nodes the fit samples do not reach follow their neighbours linearly."""
+        weight = np.sqrt(SMOOTHING * np.mean(np.sum(columns**2, axis=0)))
+        return weight * np.diff(np.eye(columns.shape[1]), 2, axis=0)
+
+    def physical(self, ctx, setting, coef):
+        level = float(np.mean(coef))
+        if level <= 0.0:
+            return None
+        s, factors = self.along(ctx), coef / level
+        params = {"coulomb": level, "factor_min": float(factors.min()),
+                  "factor_max": float(factors.max())}
+        fmu = {**ctx.coulomb_parameters(level), "table_start": float(s.min()),
+               "table_end": float(s.max()), "factors": " ".join(repr(float(f)) for f in factors)}
+        return params, fmu
+
+
+class PositionDependent(_Table):
+    """Coulomb level varying along the rail (table over the position)."""
+
+    effect, signal, fmu_name, uses_position = ("position_dependent_friction", "position",
+                                               "FrictionPositionDependent", True)
+
+
+class UnmodeledMass(Candidate):
+    """A mass term missing from the rig: extra_mass * a."""
+
+    effect, signal = "unmodeled_mass", "acceleration"
+
+    def columns(self, ctx, setting):
+        return np.column_stack([super().columns(ctx, setting)[:, 0], ctx.motion.a])
+
+    def physical(self, ctx, setting, coef):
+        if ctx.run.moving_mass + coef[1] < 0.0:
+            return None
+        params, fmu = self._coulomb(ctx, float(coef[0])) or (None, None)
+        return None if params is None else ({**params, "extra_mass": float(coef[1])}, fmu)
+
+    def rig_mass(self, ctx, coef):
+        return ctx.run.moving_mass + float(coef[1])
+
+
+class PreloadLoss(Candidate):
+    """Coulomb level drifting exponentially with the running distance; setting: wear distance."""
+
+    effect, signal, fmu_name, uses_position = ("preload_loss", "running_distance",
+                                               "FrictionPreloadLoss", True)
+
+    def settings(self, ctx):
+        total = max(float(ctx.distance[-1]), 1e-9)
+        return [{"wear_distance": float(total * f)} for f in np.logspace(-1.5, 1.5, 13)]
+
+    def columns(self, ctx, setting):
+        v, d, w, tol = ctx.motion.v, ctx.distance, setting["wear_distance"], ctx.velocity_tolerance
+        kept = -friction_laws.preload_loss_friction(v, d, 1.0, 0.0, w, tol)  # level 1 throughout
+        fading = -friction_laws.preload_loss_friction(v, d, 1.0, 1.0, w, tol)  # exp(-D / w)
+        return np.column_stack([kept, fading])
+
+    def physical(self, ctx, setting, coef):
+        start = float(coef[0] + coef[1])  # level at D = 0
+        if start <= 0.0 or coef[0] < 0.0:
+            return None
+        loss = float(coef[1]) / start
+        params = {"coulomb": start, "loss": loss}
+        fmu = {**ctx.coulomb_parameters(start), "loss": loss,
+               "wear_distance": setting["wear_distance"]}
+        return params, fmu
+
+
+class BallToBall(_Table):
+    """Coulomb level varying irregularly with the running distance, nodes 1 to 4 ball diameters
+    apart (ball guides only)."""
+
+    effect, signal, fmu_name, uses_position = ("ball_to_ball_contact", "running_distance",
+                                               "FrictionBallToBall", True)
+    law = staticmethod(friction_laws.ball_to_ball_friction)
+
+    def along(self, ctx):
+        return ctx.distance
+
+    def node_counts(self, ctx):
+        diameter = 2.0 * float(ctx.run.sections["guideway"]["element_radius"])
+        total = float(ctx.distance[-1])
+        return sorted({int(np.clip(total / (k * diameter), 2, 400)) + 1 for k in (1, 2, 4)})
+
+
+BASELINE = Candidate()
+
+
+def candidates_for(run: MeasuredRun) -> list[Candidate]:
+    """The candidate extensions of a horizontal drive rig's model (ball guides: ball-to-ball too)."""
+    found = [Lubrication(), PreslidingHysteresis(), PositionDependent(), UnmodeledMass(),
+             PreloadLoss()]
+    if run.sections.get("guideway", {}).get("type") == "ball":
+        found.append(BallToBall())
+    return found

@@ -1,0 +1,104 @@
+"""Where model and measurement disagree: the fit/held-out split, the gap, the noise floor, and the
+residual against time, motion, reversals, running distance and frequency."""
+from __future__ import annotations
+
+import numpy as np
+
+from .signals import noise_rms
+
+BLOCK = 25  # samples per block (at least); every third block is held out
+MAX_BLOCKS = 600
+BINS = 20  # quantile bins of the residual-against-signal statistics
+
+
+def blocks(n: int) -> int:
+    """Number of blocks the record of n samples is cut into."""
+    return int(np.clip(n // BLOCK, 3, MAX_BLOCKS))
+
+
+def split(n: int, usable: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(fit, held_out) masks: the record cut into :func:`blocks` equal blocks, every third held
+    out (1/3 of the record, spread over all of it; short blocks, so that a law of a slowly
+    varying signal is tested between the fit samples around it); samples not ``usable`` belong
+    to neither."""
+    count = blocks(n)
+    block = np.minimum(np.arange(n) * count // n, count - 1)
+    held = (block % 3 == 1) & usable
+    return usable & ~held, held
+
+
+def gap(measured, simulated, mask) -> float:
+    """Range-normalised RMS error on ``mask``: rms(measured - simulated) / range(measured)."""
+    m = np.asarray(measured)[mask]
+    return float(np.sqrt(np.mean((m - np.asarray(simulated)[mask]) ** 2)) / np.ptp(m))
+
+
+def noise_floor(measured, residual, mask) -> float:
+    """RMS of the measurement noise over the range of ``measured`` on ``mask``, the noise being
+    estimated from the high-frequency part of the residual (second differences, robust MAD)."""
+    return noise_rms(residual) / float(np.ptp(np.asarray(measured)[mask]))
+
+
+def whiteness(residual, mask, lags: int = 5) -> float:
+    """Mean autocorrelation of the residual over lags 1..``lags`` on runs of consecutive samples
+    of ``mask``: about 0 (+- 1/sqrt(n)) for noise alone, towards 1 for a structured gap."""
+    r = np.where(mask, residual - residual[mask].mean(), 0.0)
+    var = float(np.sum(r * r))
+    if var == 0.0:
+        return 0.0
+    return float(np.mean([np.sum(r[k:] * r[:-k] * (mask[k:] & mask[:-k])) / var
+                          for k in range(1, lags + 1)]))
+
+
+def explained(residual, signal, mask) -> float:
+    """Share of the residual's variance explained by its means in quantile bins of ``signal``
+    (correlation ratio eta^2, 0..1)."""
+    r, s = residual[mask], signal[mask]
+    if r.size < 4 * BINS or np.ptp(s) == 0.0:
+        return 0.0
+    edges = np.quantile(s, np.linspace(0.0, 1.0, BINS + 1))
+    index = np.clip(np.searchsorted(edges, s, side="right") - 1, 0, BINS - 1)
+    counts = np.bincount(index, minlength=BINS)
+    means = np.bincount(index, r, minlength=BINS) / np.maximum(counts, 1)
+    total = float(np.sum((r - r.mean()) ** 2))
+    return float(np.sum(counts * (means - r.mean()) ** 2) / total) if total > 0 else 0.0
+
+
+def spectrum(time, residual, mask):
+    """(frequency [Hz], amplitude) of the residual (zero where not ``mask``) on a uniform grid."""
+    step = float(np.median(np.diff(time)))
+    grid = np.arange(time[0], time[-1], step)
+    r = np.interp(grid, time, np.where(mask, residual, 0.0))
+    amplitude = 2.0 * np.abs(np.fft.rfft(r * np.hanning(r.size))) / r.size
+    return np.fft.rfftfreq(r.size, step), amplitude
+
+
+def peak_frequencies(time, residual, mask, count: int = 3) -> list[float]:
+    """Up to ``count`` frequencies [Hz] whose residual amplitude stands 8x above the median,
+    ignoring the lowest 3 bins (trends)."""
+    freq, amp = spectrum(time, residual, mask)
+    if freq.size < 8:
+        return []
+    floor = np.median(amp[3:])
+    found = []
+    for i in np.argsort(amp[3:])[::-1][:50] + 3:
+        if amp[i] < 8.0 * floor or len(found) == count:
+            break
+        if all(abs(freq[i] - f) > 3 * freq[1] for f in found):
+            found.append(float(freq[i]))
+    return found
+
+
+def signals(ctx) -> dict[str, np.ndarray]:
+    """The signals the residual is examined against, by name."""
+    m = ctx.motion
+    since_t, since_x = m.since_reversal()
+    return {"time": m.time, "position": m.x, "velocity": m.v, "speed": np.abs(m.v),
+            "acceleration": m.a, "time_since_reversal": since_t,
+            "displacement_since_reversal": since_x, "running_distance": ctx.distance}
+
+
+def locate(ctx, residual, mask) -> dict:
+    """Share of the residual explained by each signal, and the residual's spectral peaks."""
+    shares = {name: explained(residual, s, mask) for name, s in signals(ctx).items()}
+    return {"explained": shares, "frequencies": peak_frequencies(ctx.motion.time, residual, mask)}

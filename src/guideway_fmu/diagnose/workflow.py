@@ -1,0 +1,196 @@
+"""The discrepancy workflow: ``diagnose(run_dir, out_dir)``.
+
+1. load and check the measured run (run_io), derive the motion that drives the model (signals);
+2. calibrate the baseline (the Coulomb level and the channel's offset) on the fit samples;
+3. locate the gap: residual against motion, reversals, running distance and frequency, the noise
+   floor from the residual's high-frequency part, whether the gap is significant;
+4. fit every candidate extension on the fit samples and score it on the held-out samples
+   (BIC of the held-out residuals: baseline minus candidate); name the best one when the gap is
+   significant, the score exceeds SCORE_MIN and the candidate explains at least EXPLAINED of
+   the gap's excess over the noise; ``none`` when the gap is not significant; else ``unknown``
+   with a sparse-regression law for the residual;
+5. write the baseline and augmented scenarios, co-simulate them through the FMUs and report the
+   held-out gaps of the co-simulations; write diagnosis.json, fit.csv, plots and report.html.
+"""
+from __future__ import annotations
+
+import time as clock
+from pathlib import Path
+
+import numpy as np
+
+from . import locate, regression, report, scenario
+from .candidates import BASELINE, Context, candidates_for
+from .run_io import load_run
+from .signals import derive_motion
+
+FORMAT = "guideway-diagnosis/1"
+SIGNIFICANT_GAP = 1.1  # gap / noise floor above which a gap may be significant
+SIGNIFICANT_WHITENESS = 5.0  # ... and residual autocorrelation above this many 1/sqrt(n)
+SCORE_MIN = 10.0  # held-out BIC improvement a candidate needs to be named
+EXPLAINED = 0.5  # share of the gap's excess variance over the noise it must explain
+MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
+UNITS = {"time": "s", "position": "m", "velocity": "m/s", "speed": "m/s", "acceleration": "m/s2",
+         "time_since_reversal": "s", "displacement_since_reversal": "m", "running_distance": "m"}
+
+
+def _bic(residual, mask, k) -> float:
+    n = int(mask.sum())
+    return n * np.log(max(float(np.mean(residual[mask] ** 2)), 1e-300)) + k * np.log(n)
+
+
+def _confidence(scores: dict, chosen: str) -> float:
+    """Posterior weight of ``chosen`` among the baseline ("none", score 0) and the candidates,
+    exp((score - SCORE_MIN) / 2) normalised (BIC approximation of the model evidence, with the
+    naming margin SCORE_MIN as the prior odds against an extension)."""
+    values = np.array([v - (SCORE_MIN if k != "none" else 0.0) for k, v in scores.items()])
+    weights = np.exp((values - values.max()) / 2.0)
+    weights /= weights.sum()
+    if chosen == "unknown":  # no named model holds: the weight of the best one is what is doubted
+        return float(1.0 - weights.max()) if len(weights) > 1 else 0.0
+    return float(dict(zip(scores, weights))[chosen])
+
+
+def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
+    """Diagnose the measured run in ``run_dir``; write everything into ``out_dir``.
+
+    ``fmu_dir``: where to find (or build) the FMUs, by default ``out_dir``/fmus. Returns the
+    content of diagnosis.json. Raises FileNotFoundError or ValueError (one message naming the
+    file and the row, column, section or key) for a run that cannot be used.
+    """
+    started = clock.perf_counter()
+    run = load_run(run_dir)
+    source = run.path / "rig.toml"
+    if run.kind != "horizontal_drive":
+        raise ValueError(f"{source}: [rig] key 'kind': diagnose handles 'horizontal_drive' rigs; "
+                         f"{run.kind!r} is not supported yet")
+    if run.model["friction"] != "coulomb":
+        raise ValueError(f"{source}: [model] key 'friction': diagnose calibrates a 'coulomb' "
+                         f"baseline; {run.model['friction']!r} is not supported as a baseline yet")
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    fmu_dir = Path(fmu_dir) if fmu_dir is not None else out / "fmus"
+
+    motion_columns = {c: run.columns[c] for c in MOTION_CHANNELS
+                      if c in run.inputs or (c == "feed_acceleration" and c in run.columns)}
+    motion = derive_motion(run.time, motion_columns)
+    ctx = Context.of(run, motion)
+    usable = ~motion.standstill
+    fit_mask, held = locate.split(run.time.size, usable)
+    if held.sum() < 20 or fit_mask.sum() < 20:
+        raise ValueError(f"{run.path / 'data.csv'}: only {int(usable.sum())} samples with a clear "
+                         f"direction of motion; at least 60 are needed")
+
+    baseline = BASELINE.fit(ctx, fit_mask)
+    if baseline is None:
+        raise ValueError(f"{run.path / 'data.csv'}: column '{run.channel}': the Coulomb level "
+                         f"fits negative; {run.channel} must be positive along the motion")
+    y = ctx.y
+    residual = y - baseline.prediction
+    noise = locate.noise_floor(y, residual, held)
+    gap_base = locate.gap(y, baseline.prediction, held)
+    white = locate.whiteness(residual, held)
+    significant = bool(gap_base > SIGNIFICANT_GAP * noise
+                       and white > SIGNIFICANT_WHITENESS / np.sqrt(held.sum()))
+    where = locate.locate(ctx, residual, usable)
+
+    bic_base = _bic(residual, held, baseline.n_parameters)
+    fits = [f for f in (c.fit(ctx, fit_mask) for c in candidates_for(run)) if f is not None]
+    ranked = []
+    for f in fits:
+        score = bic_base - _bic(y - f.prediction, held, f.n_parameters)
+        ranked.append((score, f, locate.gap(y, f.prediction, held)))
+    ranked.sort(key=lambda item: -item[0])
+
+    # a law from signals no candidate uses (normal force, residual peak frequencies) competes
+    _, foreign, n_foreign = regression.propose(ctx, residual, fit_mask, where["frequencies"],
+                                               foreign=True)
+    foreign_score = bic_base - _bic(residual - foreign, held, baseline.n_parameters + n_foreign)
+    effect, winner, equation, law = "none", None, None, None
+    if significant and ranked:
+        score, best, gap_best = ranked[0]
+        share = (gap_base**2 - gap_best**2) / max(gap_base**2 - noise**2, 1e-300)
+        if score > SCORE_MIN and share >= EXPLAINED and score > foreign_score:
+            effect, winner = best.effect, best
+        else:
+            effect = "unknown"
+            equation, law, _ = regression.propose(ctx, residual, fit_mask, where["frequencies"])
+    scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
+    confidence = _confidence(scores, effect)
+
+    # the augmented model (the baseline for none / unknown) through the FMUs
+    model = winner or baseline
+    scenario.ensure_fmus(fmu_dir, [*scenario.RIG_FMUS, model.fmu])
+    replay = scenario.write_replay(ctx, out / "replay.csv")
+    toml = scenario.write_scenario(
+        ctx, model, out / ("augmented.toml" if winner else "baseline.toml"), replay, fmu_dir,
+        f"augmented_{effect}" if winner else "baseline",
+        f"{run.path.name}: baseline" + (f" + {effect}" if winner else ""))
+    cosim, wall = scenario.cosimulate(ctx, toml)
+    agreement = float(np.max(np.abs(cosim - model.prediction)[usable]) / np.ptp(y[held]))
+    base_sim = baseline.prediction
+    aug_sim = cosim if winner else base_sim
+    gap_before = locate.gap(y, base_sim, held)
+    gap_after = locate.gap(y, aug_sim, held)
+
+    diagnosis = {
+        "format": FORMAT, "missing_effect": effect, "confidence": round(confidence, 6),
+        "channel": run.channel, "gap_before": round(gap_before, 8), "gap_after": round(gap_after, 8),
+        "noise_floor": round(noise, 8),
+        "candidates": [{"effect": f.effect, "gap_after": round(g, 8), "score": round(float(s), 3),
+                        "parameters": {k: (round(v, 12) if isinstance(v, float) else v)
+                                       for k, v in f.parameters.items()}}
+                       for s, f, g in ranked],
+        "equation": equation,
+    }
+    report.write_diagnosis(out / "diagnosis.json", diagnosis)
+    report.write_fit(out / "fit.csv", run.time[held], y[held], base_sim[held], aug_sim[held])
+
+    signal_name = winner and next(c for c in candidates_for(run) if c.effect == effect).signal
+    if signal_name is None:
+        signal_name = max(where["explained"], key=where["explained"].get)
+    signal = locate.signals(ctx)[signal_name]
+    images = [
+        report.plot_comparison(out / "measured_vs_models.png", run.time, y, base_sim, aug_sim,
+                               held, run.channel, effect),
+        report.plot_residual(out / f"residual_vs_{signal_name}.png", signal, signal_name,
+                             UNITS[signal_name], y - base_sim, y - aug_sim, held, effect),
+        report.plot_ranking(out / "candidate_ranking.png", diagnosis["candidates"], gap_before, noise),
+    ]
+    notes = {"run": str(run.path), "sections": {
+        "Samples": {"samples": run.time.size, "fit samples": int(fit_mask.sum()),
+                    "held-out samples (gap, fit.csv)": int(held.sum()),
+                    "left out of fit and gap (standstill, ambiguous direction)": int((~usable).sum()),
+                    "split": f"{locate.blocks(run.time.size)} equal blocks of the record, every third "
+                             f"held out"},
+        "Motion driving the model": motion.how,
+        "Gap and noise": {
+            "baseline gap (vectorised fit)": f"{gap_base:.6g}",
+            "noise floor": "robust RMS of second differences of the baseline residual "
+                           "(1.4826 MAD / sqrt 6), over the held-out range of the channel",
+            "residual autocorrelation (lags 1-5)": f"{white:.4g} "
+                                                   f"(noise alone: ~ {1 / np.sqrt(held.sum()):.2g})",
+            "significant": str(significant),
+            "residual peaks [Hz]": ", ".join(f"{f:.4g}" for f in where["frequencies"]) or "-"},
+        "Share of the baseline residual explained by bins of": {
+            k: f"{v:.3f}" for k, v in sorted(where["explained"].items(), key=lambda kv: -kv[1])},
+        "Models": {"baseline": f"{baseline.parameters} (FrictionCoulomb, fitted with the "
+                               f"vectorised physics: the 'baseline' of fit.csv)",
+                   "augmented": f"{winner.parameters} ({winner.fmu}, rig mass {winner.rig_mass:.6g} kg"
+                                f"): co-simulated, the 'augmented' of fit.csv"
+                   if winner else "= baseline",
+                   "scenario": f"{toml.name} (run it with guideway-fmu run)",
+                   "co-simulation": f"FeedKinematics (replay) -> {model.fmu} -> HorizontalRig, "
+                                    f"gauss-seidel at the median sample interval; wall time "
+                                    f"{wall:.2f} s; largest deviation from the vectorised model "
+                                    f"{agreement:.3g} of the range",
+                   "equation (unknown only)": equation or "-",
+                   "score of a law in foreign terms (normal force, peak frequencies)":
+                       f"{foreign_score:.4g}",
+                   "equation held-out gap": f"{locate.gap(y, baseline.prediction + law, held):.6g}"
+                   if law is not None else "-"},
+        "Warnings": {str(i + 1): w for i, w in enumerate(run.warnings)} or {"-": "none"},
+        "Timing": {"diagnose wall time [s]": f"{clock.perf_counter() - started:.2f}"},
+    }}
+    report.write_html(out / "report.html", diagnosis, notes, images)
+    return diagnosis

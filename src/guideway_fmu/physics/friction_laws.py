@@ -1,0 +1,119 @@
+"""Friction laws that extend Coulomb friction, each a plain function of the feed motion, SI units.
+
+Every law returns the friction force ON the moving part (opposing its motion), like
+physics/friction.py, and is written for numpy arrays over a whole record (the discrepancy
+workflow fits them) and for one value at a time (the FMUs evaluate them per communication step).
+``coulomb`` [N] is the Coulomb level, the friction force at steady sliding; s(u) is
+:func:`friction.regularised_sign`.
+
+* Stribeck (lubrication): F = -(F_c + (F_s - F_c) exp(-(|u| / v_s)^d)) s(u) - c_v |u|^b sgn(u):
+  from the static level F_s friction falls (or rises) to F_c as the film builds over the
+  Stribeck velocity v_s (shape exponent d, 2 for Gaussian), and the viscous shear c_v |u|^b
+  grows with speed (b = 1: Newtonian; b < 1: shear thinning).
+* Dahl (pre-sliding hysteresis): each element gives F = -F_c z with dz/dx = (sgn(dx) - z) / delta
+  along the path: after a reversal friction builds up over the pre-sliding distance delta
+  instead of switching at once (delta = F_c / sigma_0 of Dahl's rest stiffness sigma_0); elements
+  with different delta in parallel form a Maxwell-slip-like model. :func:`dahl_update` is the
+  exact solution over one monotone displacement step.
+* Position-dependent friction: the Coulomb level times a factor interpolated linearly in a table
+  of equally spaced positions x (waviness, defects, recirculation).
+* Preload loss: the Coulomb level falls with the running distance D (the accumulated |dx|),
+  F_c (1 - loss (1 - exp(-D / wear_distance))).
+* Ball-to-ball contact (ball guides): neighbouring balls of the train slide on each other, which
+  raises the friction level and makes it vary irregularly as the train's arrangement changes
+  with the distance run; the level is F_c times a factor interpolated in a table over the
+  running distance D, with nodes about a ball diameter apart.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .friction import regularised_sign
+
+
+def stribeck_friction(u, coulomb, static, stribeck_velocity, viscous, velocity_tolerance=0.0,
+                      stribeck_exponent=2.0, viscous_exponent=1.0):
+    """Stribeck + viscous friction force on the moving part [N] at feed velocity u [m/s].
+
+    coulomb F_c and static F_s [N], stribeck_velocity v_s [m/s] > 0, viscous c_v
+    [N (s/m)^b], stribeck_exponent d > 0, viscous_exponent b > 0.
+    """
+    u = np.asarray(u, dtype=float)
+    speed = np.abs(u)
+    level = coulomb + (static - coulomb) * np.exp(-(speed / stribeck_velocity) ** stribeck_exponent)
+    return -level * regularised_sign(u, velocity_tolerance) - viscous * speed**viscous_exponent * np.sign(u)
+
+
+def dahl_update(z, dx, presliding_distance):
+    """Dahl state z [-] after a monotone displacement dx [m] from state z (exact solution).
+
+    z relaxes towards sgn(dx) as exp(-|dx| / delta); dx = 0 leaves z unchanged.
+    """
+    dx = np.asarray(dx, dtype=float)
+    target = np.sign(dx)
+    return target + (z - target) * np.exp(-np.abs(dx) / presliding_distance)
+
+
+def dahl_state(x, presliding_distances, z0=0.0):
+    """Dahl state z [-] along the position record x [m] (samples), for each pre-sliding distance.
+
+    ``presliding_distances`` [m] (scalar or 1-D array, all > 0); returns shape (len(x),) for a
+    scalar, (len(x), len(distances)) otherwise. z[0] = z0 and z[k] = dahl_update(z[k-1],
+    x[k] - x[k-1], delta), the same step the FMU takes between communication points.
+    """
+    x = np.asarray(x, dtype=float)
+    delta = np.asarray(presliding_distances, dtype=float)
+    dx = np.diff(x)
+    target = np.sign(dx)[:, None]
+    decay = np.exp(-np.abs(dx)[:, None] / np.atleast_1d(delta)[None, :])
+    gain = target * (1.0 - decay)
+    z = np.empty((x.size, decay.shape[1]))
+    z[0] = z0
+    current = z[0].copy()
+    for k in range(dx.size):  # linear recurrence z_k = decay_k z_(k-1) + gain_k
+        current = decay[k] * current + gain[k]
+        z[k + 1] = current
+    return z[:, 0] if delta.ndim == 0 else z
+
+
+def dahl_friction(z, coulomb):
+    """Dahl friction force on the moving part [N] for the state z [-]: -F_c z."""
+    return -coulomb * np.asarray(z, dtype=float)
+
+
+def table_factor(s, start, end, factors):
+    """Factor [-] at s, interpolated linearly in ``factors`` given at equally spaced nodes from
+    ``start`` to ``end`` (> start), held at the end values outside."""
+    nodes = np.linspace(start, end, len(factors))
+    return np.interp(np.asarray(s, dtype=float), nodes, factors)
+
+
+def position_dependent_friction(u, x, coulomb, start, end, factors, velocity_tolerance=0.0):
+    """Coulomb friction [N] whose level F_c * table_factor(x) varies along the rail, x [m]."""
+    level = coulomb * table_factor(x, start, end, factors)
+    return -level * regularised_sign(u, velocity_tolerance)
+
+
+def running_distance(x):
+    """Accumulated sliding distance D [m] along the position record x [m], D[0] = 0."""
+    x = np.asarray(x, dtype=float)
+    return np.concatenate(([0.0], np.cumsum(np.abs(np.diff(x)))))
+
+
+def preload_loss_factor(distance, loss, wear_distance):
+    """Remaining friction level [-] after the running distance D [m]:
+    1 - loss (1 - exp(-D / wear_distance)), loss [-] the final fraction lost, wear_distance [m] > 0."""
+    return 1.0 - loss * -np.expm1(-np.asarray(distance, dtype=float) / wear_distance)
+
+
+def preload_loss_friction(u, distance, coulomb, loss, wear_distance, velocity_tolerance=0.0):
+    """Coulomb friction [N] with the level drifting down over the running distance D [m]."""
+    level = coulomb * preload_loss_factor(distance, loss, wear_distance)
+    return -level * regularised_sign(u, velocity_tolerance)
+
+
+def ball_to_ball_friction(u, distance, coulomb, start, end, factors, velocity_tolerance=0.0):
+    """Coulomb friction [N] of a ball guide whose level F_c * table_factor(D) varies with the
+    running distance D [m] (ball-to-ball sliding; table nodes about a ball diameter apart)."""
+    level = coulomb * table_factor(distance, start, end, factors)
+    return -level * regularised_sign(u, velocity_tolerance)

@@ -1,0 +1,63 @@
+"""Candidate friction laws and the horizontal rig (physics/friction_laws.py, horizontal_rig.py)
+against hand calculations, limiting cases and a numerical integration."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from guideway_fmu.physics import friction_laws as fl
+from guideway_fmu.physics import horizontal_rig
+
+
+def test_stribeck_limits_by_hand():
+    # far above v_s: F = -(F_c + c_v u) for u > 0; just above 0: F -> -F_s
+    f = fl.stribeck_friction(np.array([1.0, -1.0, 1e-9]), 10.0, 15.0, 0.01, 3.0)
+    assert f[0] == pytest.approx(-(10.0 + 3.0 * 1.0), rel=1e-12)
+    assert f[1] == pytest.approx(10.0 + 3.0, rel=1e-12)
+    assert f[2] == pytest.approx(-15.0, rel=1e-9)
+
+
+def test_stribeck_at_stribeck_velocity_hand_calculation():
+    # u = v_s: level = F_c + (F_s - F_c) e^-1; shear-thinning viscous c_v u^0.5
+    f = fl.stribeck_friction(0.04, 10.0, 20.0, 0.04, 2.0, 0.0, 2.0, 0.5)
+    assert f == pytest.approx(-(10.0 + 10.0 * math.exp(-1.0) + 2.0 * math.sqrt(0.04)), rel=1e-12)
+
+
+def test_dahl_update_matches_numerical_integration_of_dahl_ode():
+    # dz/dx = (1 - z) / delta for increasing x, from z0 = -0.5 over dx = 3 delta
+    delta, z0, dx = 2e-6, -0.5, 6e-6
+    ode = solve_ivp(lambda x, z: (1.0 - z) / delta, (0.0, dx), [z0], rtol=1e-11, atol=1e-13)
+    assert fl.dahl_update(z0, dx, delta) == pytest.approx(ode.y[0, -1], rel=1e-8)
+
+
+def test_dahl_state_limiting_cases():
+    x = np.array([0.0, 1.0, 2.0, 1.0, 1.0])  # displacements far beyond delta: Coulomb switching
+    z = fl.dahl_state(x, 1e-6, z0=0.0)
+    np.testing.assert_allclose(z, [0.0, 1.0, 1.0, -1.0, -1.0], atol=1e-12)
+    assert fl.dahl_state(x, np.array([1e-6, 1e-3])).shape == (5, 2)
+
+
+def test_running_distance_and_preload_factor_by_hand():
+    d = fl.running_distance([0.0, 0.2, 0.1, 0.4])
+    np.testing.assert_allclose(d, [0.0, 0.2, 0.3, 0.6])
+    # 1 - 0.3 (1 - e^-2) at D = 2 wear distances
+    assert fl.preload_loss_factor(2.0, 0.3, 1.0) == pytest.approx(1 - 0.3 * (1 - math.exp(-2)))
+
+
+def test_table_factor_interpolates_equally_spaced_nodes_by_hand():
+    # nodes at 0, 0.5, 1.0 with factors 1, 2, 0: at 0.25 -> 1.5, at 0.75 -> 1.0, held outside
+    np.testing.assert_allclose(fl.table_factor([0.25, 0.75, -1.0, 2.0], 0.0, 1.0, [1.0, 2.0, 0.0]),
+                               [1.5, 1.0, 1.0, 0.0])
+    f = fl.position_dependent_friction(-0.1, 0.25, 4.0, 0.0, 1.0, [1.0, 2.0, 0.0])
+    assert f == pytest.approx(4.0 * 1.5)
+    f = fl.ball_to_ball_friction(0.1, 0.75, 4.0, 0.0, 1.0, [1.0, 2.0, 0.0])
+    assert f == pytest.approx(-4.0 * 1.0)
+
+
+def test_horizontal_rig_drive_force_hand_calculation():
+    # drive = m a - F_friction + offset: 2 kg at 3 m/s2 against friction -5 N (opposing +u)
+    assert horizontal_rig.drive_force(3.0, -5.0, 2.0, 0.5) == pytest.approx(6.0 + 5.0 + 0.5)
+    assert horizontal_rig.friction_force(-5.0, 0.5) == pytest.approx(5.5)

@@ -1,0 +1,122 @@
+"""Reading a measured run: every refusal names the file and the row, column, section or key."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from guideway_fmu.diagnose.run_io import load_run
+from guideway_fmu.physics.feed_profiles import Replay, make_profile
+
+RIG = """format = "guideway-measured-run/1"
+[rig]
+kind = "horizontal_drive"
+moving_mass = 3.2
+[model]
+friction = "coulomb"
+[channels]
+inputs = ["feed_velocity"]
+outputs = ["drive_force"]
+"""
+
+
+def write(tmp_path, rig=RIG, rows=None, header="time,feed_velocity,drive_force"):
+    t = np.arange(60) * 1e-3
+    rows = rows or [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},{np.sign(np.cos(20 * a)):.3f}" for a in t]
+    (tmp_path / "rig.toml").write_text(rig)
+    (tmp_path / "data.csv").write_text("\n".join([header] + rows) + "\n")
+    return tmp_path
+
+
+def refused(run_dir, *fragments, kind=ValueError):
+    with pytest.raises(kind) as info:
+        load_run(run_dir)
+    for fragment in fragments:
+        assert fragment in str(info.value), str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_valid_run_is_read(tmp_path):
+    run = load_run(write(tmp_path))
+    assert run.channel == "drive_force" and run.time.size == 60
+
+
+def test_missing_files_name_them(tmp_path):
+    refused(tmp_path / "nope", "nope", kind=FileNotFoundError)
+    write(tmp_path)
+    (tmp_path / "data.csv").unlink()
+    refused(tmp_path, "data.csv", kind=FileNotFoundError)
+
+
+@pytest.mark.parametrize("cell, text", [("nan", "nan"), ("", "empty cell"), ("inf", "inf"),
+                                        ("abc", "abc")])
+def test_bad_cell_names_row_and_column(tmp_path, cell, text):
+    run = write(tmp_path)
+    lines = (run / "data.csv").read_text().splitlines()
+    parts = lines[7].split(",")
+    parts[2] = cell
+    lines[7] = ",".join(parts)
+    (run / "data.csv").write_text("\n".join(lines) + "\n")
+    refused(run, "data.csv", "row 8", "column 'drive_force'", text)
+
+
+def test_non_increasing_time_names_row(tmp_path):
+    run = write(tmp_path)
+    lines = (run / "data.csv").read_text().splitlines()
+    lines[11] = lines[10]
+    (run / "data.csv").write_text("\n".join(lines) + "\n")
+    refused(run, "data.csv", "row 12", "column 'time'", "increase")
+
+
+def test_missing_output_column_names_key(tmp_path):
+    refused(write(tmp_path, header="time,feed_velocity,friction_force"), "rig.toml", "outputs",
+            "'drive_force'")
+
+
+def test_unknown_component_names_key(tmp_path):
+    refused(write(tmp_path, rig=RIG.replace('"coulomb"', '"magic"')), "rig.toml",
+            "[model] key 'friction'", "magic")
+
+
+def test_component_needing_missing_section_names_section_and_key(tmp_path):
+    rig = RIG.replace('friction = "coulomb"', 'friction = "mixed_ehl"') + """[guideway]
+rows = 4
+elements_per_row = 20
+element_radius = 2.5e-3
+roller_length = 8e-3
+preload = 9200.0
+"""
+    refused(write(tmp_path, rig=rig), "rig.toml", "[lubricant]")
+    rig += "[lubricant]\nviscosity = 0.1\n[surface]\nroughness_rms = 1e-7\n"
+    refused(write(tmp_path, rig=rig), "rig.toml", "'pressure_viscosity'", "[lubricant]")
+
+
+def test_bad_format_and_mass_name_key(tmp_path):
+    refused(write(tmp_path, rig=RIG.replace("/1", "/2")), "rig.toml", "'format'")
+    refused(write(tmp_path, rig=RIG.replace("3.2", "-1.0")), "rig.toml", "moving_mass")
+
+
+def test_column_outside_vocabulary_warns_naming_it(tmp_path):
+    t = np.arange(60) * 1e-3
+    rows = [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},1.0,{a}" for a in t]
+    with pytest.warns(UserWarning, match="temperature"):
+        run = load_run(write(tmp_path, rows=rows, header="time,feed_velocity,drive_force,temperature"))
+    assert "temperature" not in run.columns
+
+
+def test_replay_profile_reproduces_samples_and_interpolates_by_hand(tmp_path):
+    path = tmp_path / "replay.csv"
+    path.write_text("time,feed_position,feed_velocity,feed_acceleration\n"
+                    "0,0,1,2\n1,1,3,2\n2,5,3,0\n")
+    replay = make_profile("replay", path=str(path))
+    assert replay == Replay((0, 1, 2), (0, 1, 5), (1, 3, 3), (2, 2, 0))
+    x, u, a = replay.evaluate(np.array([0.5, 1.5, 3.0]))
+    np.testing.assert_allclose(x, [0.5, 3.0, 5.0])
+    np.testing.assert_allclose(u, [2.0, 3.0, 3.0])
+    np.testing.assert_allclose(a, [2.0, 1.0, 0.0])
+
+
+def test_replay_from_csv_refusal_names_row_and_column(tmp_path):
+    path = tmp_path / "replay.csv"
+    path.write_text("time,feed_position,feed_velocity,feed_acceleration\n0,0,1,2\n1,x,3,2\n")
+    with pytest.raises(ValueError, match="row 3, column 'feed_position'"):
+        Replay.from_csv(path)
