@@ -4,7 +4,8 @@ import pytest
 
 @pytest.fixture(scope="session")
 def fmu_dir(tmp_path_factory):
-    """All six FMUs (and their README.md), built once per test session into a temporary folder."""
+    """All FMUs, extensions included (and their README.md), built once per test session into a
+    temporary folder."""
     from guideway_fmu.build import build
 
     out = tmp_path_factory.mktemp("fmus")

@@ -81,6 +81,10 @@ def test_demo_main_job_end_to_end(tmp_path):
     assert set(summary["runs"]) == set(demo.DEMO_SCENARIOS)
     assert summary["verify"]["paper000_9000N_4500Hz"]["rms_error_Contact.F_upper"] < 0.01
     assert (tmp_path / "demo" / "paper000_9000N_4500Hz_dry" / "spectrum.png").exists()
+    diagnosis = summary["diagnose"]
+    assert diagnosis["missing_effect"] == diagnosis["hidden_effect"] == "presliding_hysteresis"
+    assert diagnosis["gap_after"] < 0.5 * diagnosis["gap_before"]
+    assert (tmp_path / "demo" / "diagnose_example" / "report.html").exists()
 
 
 def test_cli_demo_refuses_bad_stop_before_any_work(tmp_path, capsys):

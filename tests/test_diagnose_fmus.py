@@ -17,16 +17,6 @@ LOADS = {"coefficient": 0.01, "rollers_per_groove": 10, "F_upper": 50.0, "F_lowe
          "velocity_tolerance": 0.0}  # Coulomb level 0.01 * 2 * 10 * 100 = 20 N
 
 
-@pytest.fixture(scope="module")
-def fmu_dir(tmp_path_factory):
-    """The extension FMUs, built once for this module."""
-    from guideway_fmu.build import build
-
-    out = tmp_path_factory.mktemp("extension_fmus")
-    build(out, list(EXTENSION_FMUS))
-    return out
-
-
 @pytest.fixture
 def instance(fmu_dir):
     opened = []

@@ -70,11 +70,11 @@ def code_hash() -> str:
 
 
 def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[Path]:
-    """Build the named FMUs (default: all of FMUS; EXTENSION_FMUS by name) into ``out_dir`` and
-    write its README.md."""
+    """Build the named FMUs (default: all, the extensions included) into ``out_dir`` and write
+    its README.md (every FMU in the folder)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    names = list(FMUS) if names is None else names
+    names = list(ALL_FMUS) if names is None else names
     unknown = [n for n in names if n not in ALL_FMUS]
     if unknown:
         raise ValueError(f"unknown FMU {unknown[0]!r}; known FMUs: {', '.join(ALL_FMUS)}")
