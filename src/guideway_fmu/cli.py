@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | run | verify | export-ssp | demo | facts``."""
+"""Command line: ``guideway-fmu build | run | verify | export-ssp | demo | facts | ehl | ehl-cycle``."""
 from __future__ import annotations
 
 import argparse
@@ -23,6 +23,60 @@ def _load(args):
     return s.with_changes(**changes) if changes else s
 
 
+def _ehl_args(sub) -> None:
+    p = sub.add_parser("ehl", help="numerical mixed-EHL solution of one roller contact")
+    for name, unit in (("load", "load per unit length w' [N/m]"),
+                       ("velocity", "entrainment (mean) velocity u_m [m/s]"),
+                       ("pressure-viscosity", "alpha [1/Pa] (default 2.2e-8)"),
+                       ("W", "Hamrock's load W = w'/(E' R)"), ("U", "speed U = mu0 u_m/(E' R)"),
+                       ("G", "material G = alpha E'"), ("radius", "reduced radius R [m] (default 2.5e-3)"),
+                       ("e-reduced", "E' [Pa] (default 2e11)"), ("viscosity", "mu0 [Pa s] (default 0.195)"),
+                       ("roughness", "composite RMS roughness [m] (default 0: smooth)"),
+                       ("sliding-velocity", "u_s [m/s], friction only (default 0)")):
+        p.add_argument(f"--{name}", type=float, default=None, help=unit)
+    p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument("--plot", type=Path, default=None, help="PNG of pressure and film against x/b")
+    p = sub.add_parser("ehl-cycle", help="numerical EHL of one upper roller at instants of a run")
+    p.add_argument("run_dir", type=Path, help="folder written by guideway-fmu run")
+    p.add_argument("--out", type=Path, required=True, help="output folder")
+    p.add_argument("--instance", default="Contact", help="contact instance (default Contact)")
+    p.add_argument("--feed", default="Feed.u", help="feed velocity column (default Feed.u)")
+    p.add_argument("--times", default=None,
+                   help="instants t1,t2,... [s] (default: --count over the largest load oscillation)")
+    p.add_argument("--count", type=int, default=None, help="instants A, B, ... (default 10)")
+    p.add_argument("--window", type=float, default=None,
+                   help="span [s] around the load peak (default: minimum to minimum)")
+    p.add_argument("--history", type=float, default=None,
+                   help="squeeze history before an instant [s] (default 2b/u_m; 0: steady)")
+    p.add_argument("--floor", type=float, default=None,
+                   help="load of separated samples, fraction of the largest (default 0.05)")
+    p.add_argument("--roughness", type=float, default=None,
+                   help="RMS roughness [m] (default 0.45e-6, paper 000 Table 4)")
+    p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
+
+
+def _ehl(args) -> str:
+    from . import ehl_analysis as ea
+    if args.command == "ehl":
+        names = ("load", "velocity", "pressure_viscosity", "W", "U", "G", "radius", "e_reduced",
+                 "viscosity", "roughness", "sliding_velocity")
+        result, summary = ea.solve_point(ea.point_contact(**{k: getattr(args, k) for k in names}),
+                                         args.nodes)
+        if args.plot:
+            from .ehl_plots import plot_distribution
+            summary["plot"] = str(plot_distribution(result, args.plot))
+        text = ea.format_point(summary) + (f"\nplot: {args.plot}" if args.plot else "")
+        return json.dumps(summary, indent=2) if args.json else text
+    options = {k: getattr(args, k) for k in ("instance", "feed", "times", "count", "window",
+                                             "history", "floor", "roughness", "nodes")
+               if getattr(args, k) is not None}
+    if "times" in options:
+        options["times"] = ea.parse_times(options["times"])
+    instants, files = ea.ehl_cycle(args.run_dir, args.out, **options)
+    return ea.format_cycle(instants) + "\n" + "\n".join(str(f) for f in files)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="guideway-fmu", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -45,6 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
     p = sub.add_parser("facts", help="print k, delta0, film and natural frequency of paper 000's rig")
     p.add_argument("--u", type=float, default=0.29, help="feed speed [m/s] (default 0.29)")
+    _ehl_args(sub)
     args = parser.parse_args(argv)
     try:
         if args.command == "build":
@@ -70,7 +125,10 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "facts":
             from .demo import rig_facts
             print(json.dumps(rig_facts(args.u), indent=2))
-    except (ValueError, FileNotFoundError, KeyError, RuntimeError) as exc:  # incl. SimulationError
+        elif args.command in ("ehl", "ehl-cycle"):
+            print(_ehl(args))
+    except (ValueError, FileNotFoundError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
+        # EHLConvergenceError
         print(f"guideway-fmu {args.command}: error: {exc}", file=sys.stderr)
         return 2
     return 0
