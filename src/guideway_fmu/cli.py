@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | run | verify | export-ssp | demo | facts | ehl | ehl-cycle``."""
+"""Command line: ``guideway-fmu build | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle``."""
 from __future__ import annotations
 
 import argparse
@@ -93,6 +93,10 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("export-ssp", help="write the scenario as an SSP 1.0 package")
     _scenario_args(p)
     p.add_argument("out", type=Path, help="the .ssp file to write")
+    p = sub.add_parser("diagnose", help="find, name and close the gap between a measured run and the model")
+    p.add_argument("run_dir", type=Path, help="measured run: rig.toml + data.csv (../shared/spec/measured-run.md)")
+    p.add_argument("--out", type=Path, required=True, help="output folder: diagnosis.json, fit.csv, report.html, plots")
+    p.add_argument("--fmus", type=Path, default=None, help="where to find or build the FMUs (default OUT/fmus)")
     p = sub.add_parser("demo", help="the main job: FMUs, stiffness curves, paper scenarios, verification")
     p.add_argument("--out", type=Path, default=Path("out/demo"))
     p.add_argument("--fmus", type=Path, default=Path("fmus"))
@@ -117,6 +121,10 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "export-ssp":
             from .cosim.ssp import export_ssp
             print(export_ssp(_load(args), args.out))
+        elif args.command == "diagnose":
+            from .diagnose.workflow import diagnose
+            diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus)
+            print(json.dumps({k: v for k, v in diagnosis.items() if k != "candidates"}, indent=2))
         elif args.command == "demo":
             if not args.stop > 0:
                 raise ValueError(f"need --stop > 0, got {args.stop}")
