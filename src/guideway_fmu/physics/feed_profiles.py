@@ -222,6 +222,68 @@ def _table_problem(time: np.ndarray, velocity: np.ndarray):
     return None
 
 
+def _check_samples(owner: str, time: np.ndarray, columns: dict) -> None:
+    """Raise ValueError naming ``owner``.field[index] unless ``time`` [s] holds at least 2
+    samples and every column is as long, finite, and sampled at strictly increasing times."""
+    if time.size < 2:
+        raise ValueError(f"{owner}.time must hold at least 2 samples, got {time.size}")
+    for name, values in columns.items():
+        if values.size != time.size:
+            raise ValueError(f"{owner}.{name} must have as many samples as {owner}.time "
+                             f"({time.size}), got {values.size}")
+        problem = _table_problem(time, values)
+        if problem:
+            field, index, text = problem
+            raise ValueError(f"{owner}.{'time' if field == 'time' else name}[{index}] {text}")
+
+
+def _read_csv(path, columns):
+    """Data of a comma-separated file with a header row: {column: numbers} and the file's line
+    number of every data row (header = row 1; blank lines are skipped).
+
+    ``columns`` lists what to read; an entry that is a tuple of alternative names reads the
+    first of them the header has. Errors name the file, the row and the column.
+    """
+    path = Path(path)
+    with path.open(newline="") as handle:
+        rows = [(n, cells) for n, cells in enumerate(csv.reader(handle), start=1)
+                if any(cell.strip() for cell in cells)]
+    header_row, header = (rows[0][0], [c.strip() for c in rows[0][1]]) if rows else (1, [])
+    chosen = []
+    for entry in columns:
+        names = entry if isinstance(entry, tuple) else (entry,)
+        name = next((n for n in names if n in header), None)
+        if name is None:
+            wanted = " or ".join(repr(n) for n in names)
+            raise ValueError(f"{path}: row {header_row}: header {header} has no column {wanted}")
+        chosen.append(name)
+    data = rows[1:]
+    if len(data) < 2:
+        raise ValueError(f"{path}: needs at least 2 data rows, got {len(data)}")
+    values = np.empty((len(data), len(chosen)))
+    for i, (row, cells) in enumerate(data):
+        for j, name in enumerate(chosen):
+            k = header.index(name)
+            cell = cells[k].strip() if k < len(cells) else ""
+            try:
+                values[i, j] = float(cell)
+            except ValueError:
+                raise ValueError(f"{path}: row {row}, column '{name}': "
+                                 f"cannot read a number from {cell!r}") from None
+    return dict(zip(chosen, values.T)), [row for row, _ in data]
+
+
+def _check_csv_columns(path, columns: dict, rows: list, time: str):
+    """Raise ValueError naming file, row and column at the first defect (:func:`_table_problem`)
+    of any column of ``columns`` against the ``time`` column."""
+    for name, values in columns.items():
+        problem = _table_problem(columns[time], values)
+        if problem:
+            field, index, text = problem
+            raise ValueError(f"{path}: row {rows[index]}, column "
+                             f"'{time if field == 'time' else name}': {text}")
+
+
 @dataclass(frozen=True)
 class Table(FeedProfile):
     """Replay of a measured velocity table: ``time`` [s] and ``velocity`` [m/s].
@@ -250,16 +312,7 @@ class Table(FeedProfile):
             if columns[field].ndim != 1:
                 raise ValueError(f"Table.{field} must be one-dimensional, "
                                  f"got shape {columns[field].shape}")
-        time, velocity = columns["time"], columns["velocity"]
-        if time.size < 2:
-            raise ValueError(f"Table.time must hold at least 2 samples, got {time.size}")
-        if velocity.size != time.size:
-            raise ValueError(f"Table.velocity must have as many samples as Table.time "
-                             f"({time.size}), got {velocity.size}")
-        problem = _table_problem(time, velocity)
-        if problem:
-            field, index, text = problem
-            raise ValueError(f"Table.{field}[{index}] {text}")
+        _check_samples("Table", columns.pop("time"), columns)
 
     @cached_property
     def _nodes(self):
@@ -298,38 +351,10 @@ class Table(FeedProfile):
         Rows are numbered as lines of the file, the header being row 1; blank lines
         are skipped. Errors name the file, the row and the column.
         """
-        path = Path(path)
-        with path.open(newline="") as handle:
-            rows = [(n, cells) for n, cells in enumerate(csv.reader(handle), start=1)
-                    if any(cell.strip() for cell in cells)]
-        if not rows:
-            raise ValueError(f"{path}: empty file, expected a header with 'time' "
-                             "and 'feed_velocity' or 'u'")
-        header_row, header = rows[0][0], [cell.strip() for cell in rows[0][1]]
-        velocity_column = next((c for c in ("feed_velocity", "u") if c in header), None)
-        if "time" not in header or velocity_column is None:
-            missing = "'time'" if "time" not in header else "'feed_velocity' or 'u'"
-            raise ValueError(f"{path}: row {header_row}: header {header} has no column {missing}")
-        columns = {"time": header.index("time"), velocity_column: header.index(velocity_column)}
-        data = rows[1:]
-        if len(data) < 2:
-            raise ValueError(f"{path}: needs at least 2 data rows, got {len(data)}")
-
-        values = np.empty((len(data), 2))
-        for i, (row, cells) in enumerate(data):
-            for j, (column, k) in enumerate(columns.items()):
-                cell = cells[k].strip() if k < len(cells) else ""
-                try:
-                    values[i, j] = float(cell)
-                except ValueError:
-                    raise ValueError(f"{path}: row {row}, column '{column}': "
-                                     f"cannot read a number from {cell!r}") from None
-        problem = _table_problem(values[:, 0], values[:, 1])
-        if problem:
-            field, index, text = problem
-            column = "time" if field == "time" else velocity_column
-            raise ValueError(f"{path}: row {data[index][0]}, column '{column}': {text}")
-        return cls(time=tuple(values[:, 0]), velocity=tuple(values[:, 1]))
+        columns, rows = _read_csv(path, ["time", ("feed_velocity", "u")])
+        _check_csv_columns(path, columns, rows, "time")
+        time, velocity = columns.values()
+        return cls(time=tuple(time), velocity=tuple(velocity))
 
 
 @dataclass(frozen=True)
@@ -356,18 +381,8 @@ class Replay(FeedProfile):
         super().__post_init__()
 
     def validate(self) -> None:
-        time = np.array(self.time)
-        if time.size < 2:
-            raise ValueError(f"Replay.time must hold at least 2 samples, got {time.size}")
-        for field in ("position", "velocity", "acceleration"):
-            values = np.array(getattr(self, field))
-            if values.size != time.size:
-                raise ValueError(f"Replay.{field} must have as many samples as Replay.time "
-                                 f"({time.size}), got {values.size}")
-            problem = _table_problem(time, values)
-            if problem:
-                name, index, text = problem
-                raise ValueError(f"Replay.{field if name == 'velocity' else name}[{index}] {text}")
+        _check_samples("Replay", np.array(self.time),
+                       {f: np.array(getattr(self, f)) for f in ("position", "velocity", "acceleration")})
 
     @cached_property
     def _columns(self):
@@ -386,29 +401,12 @@ class Replay(FeedProfile):
         """Read a comma-separated file whose header names the columns ``time``,
         ``feed_position``, ``feed_velocity`` and ``feed_acceleration`` (others are ignored).
 
-        Rows are numbered as lines of the file, the header being row 1. Errors name the file,
-        the row and the column.
+        Rows are numbered as lines of the file, the header being row 1; blank lines are
+        skipped. Errors name the file, the row and the column.
         """
-        path = Path(path)
-        with path.open(newline="") as handle:
-            rows = list(csv.reader(handle))
-        header = [cell.strip() for cell in rows[0]] if rows else []
-        missing = [c for c in cls.COLUMNS if c not in header]
-        if missing:
-            raise ValueError(f"{path}: row 1: header {header} has no column {missing[0]!r}")
-        index = [header.index(c) for c in cls.COLUMNS]
-        values = np.empty((len(rows) - 1, len(index)))
-        for i, cells in enumerate(rows[1:]):
-            for j, k in enumerate(index):
-                try:
-                    values[i, j] = float(cells[k])
-                except (IndexError, ValueError):
-                    raise ValueError(f"{path}: row {i + 2}, column '{cls.COLUMNS[j]}': cannot read "
-                                     f"a number from {cells[k] if k < len(cells) else ''!r}") from None
-        try:
-            return cls(*values.T)
-        except ValueError as exc:
-            raise ValueError(f"{path}: {exc}") from None
+        columns, rows = _read_csv(path, cls.COLUMNS)
+        _check_csv_columns(path, columns, rows, "time")
+        return cls(*columns.values())
 
 
 _FACTORIES = {
