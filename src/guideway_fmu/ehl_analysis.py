@@ -286,20 +286,6 @@ class Instant:
     result: EHLResult | None
 
 
-def _transient_grid(first: LineContactEHL, peak_load: float):
-    """(inlet, outlet, nodes) in Hertz half-widths of ``first`` that hold the default domains of
-    both ``first`` and the contact at ``peak_load`` [N/m], at the finer default spacing
-    (a transient runs on the grid of its first state)."""
-    heavy = replace(first, load=peak_load)
-    r = heavy.half_width / first.half_width
-    inlet0, outlet0 = solver._domain(first, None, None)
-    inlet1, outlet1 = solver._domain(heavy, None, None)
-    inlet, outlet = min(inlet0, r * inlet1), max(outlet0, r * outlet1)
-    spacing = min(solver.inlet_length(first), r * solver.inlet_length(heavy))
-    cells = 2 ** math.ceil(math.log2((outlet - inlet) * solver.NODES_PER_INLET_LENGTH / spacing))
-    return inlet, outlet, int(min(max(cells + 1, solver.MIN_NODES), solver.MAX_NODES))
-
-
 def _march(template, time, w, u_m, start, stop, floor, nodes):
     """Transient over samples start..stop; returns its steps (index k -> steps[k - start])."""
     part = slice(start, stop + 1)
@@ -308,7 +294,7 @@ def _march(template, time, w, u_m, start, stop, floor, nodes):
         raise ValueError(f"no entrainment (u = 0) at t = {time[start]:.6g} s, where the history "
                          "starts: no steady film to start from; give a longer --history")
     first = replace(template, load=float(loads[0]), entrainment_velocity=float(u_m[start]))
-    inlet, outlet, default_nodes = _transient_grid(first, float(np.max(loads)))
+    inlet, outlet, default_nodes = solver.transient_grid(first, float(np.max(loads)))
     return solve_transient(first, time[part], loads, entrainment_velocities=u_m[part],
                            inlet=inlet, outlet=outlet, nodes=nodes or default_nodes).steps
 

@@ -59,6 +59,19 @@ def _default_nodes(length: float, s: float) -> int:
     return int(min(max(2 ** math.ceil(math.log2(cells)) + 1, MIN_NODES), MAX_NODES))
 
 
+def transient_grid(first: LineContactEHL, peak_load: float) -> tuple[float, float, int]:
+    """(inlet, outlet, nodes) of a transient that starts at ``first`` and reaches ``peak_load``
+    [N/m]: ends in Hertz half-widths of ``first`` holding the default domains of both contacts,
+    at the finer of their default spacings (a transient keeps the grid of its first state)."""
+    heavy = replace(first, load=peak_load)
+    r = heavy.half_width / first.half_width
+    inlet0, outlet0 = _domain(first, None, None)
+    inlet1, outlet1 = _domain(heavy, None, None)
+    inlet, outlet = min(inlet0, r * inlet1), max(outlet0, r * outlet1)
+    spacing = min(inlet_length(first), r * inlet_length(heavy))
+    return inlet, outlet, _default_nodes(outlet - inlet, spacing)
+
+
 def krylov_step(jac: Jacobian, F):
     """Newton step d of J d = -F: GMRES on M^-1 J d = -M^-1 F with J applied by FFT and M^-1
     the bordered-band LU (discretisation.Jacobian.preconditioner). Returns (d, iterations)."""
