@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 from scipy.signal import savgol_filter
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
@@ -109,7 +110,7 @@ def derive_motion(time, columns: dict) -> Motion:
     if "feed_position" in columns:
         x = measured("feed_position")
     else:
-        x = np.concatenate(([0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(time))))
+        x = cumulative_trapezoid(v, time, initial=0.0)
         how["feed_position"] = "integrated from feed_velocity (trapezoid rule, x = 0 at the start)"
     if "feed_acceleration" in columns:
         a = measured("feed_acceleration")

@@ -21,6 +21,7 @@ from functools import cached_property
 from pathlib import Path
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 
 from . import checks
 
@@ -318,9 +319,8 @@ class Table(FeedProfile):
     def _nodes(self):
         """Node times, velocities, positions (cumulative trapezoid) and segment slopes."""
         time, velocity = np.array(self.time), np.array(self.velocity)
-        dt = np.diff(time)
-        position = np.concatenate(([0.0], np.cumsum(0.5 * (velocity[1:] + velocity[:-1]) * dt)))
-        return time, velocity, position, np.diff(velocity) / dt
+        position = cumulative_trapezoid(velocity, time, initial=0.0)
+        return time, velocity, position, np.diff(velocity) / np.diff(time)
 
     def evaluate(self, t):
         t = np.asarray(t, dtype=float)
