@@ -54,3 +54,15 @@ def test_cli_diagnose_bad_run_exits_2_naming_file_and_row(tmp_path):
     assert done.returncode == 2
     assert "Traceback" not in done.stderr and "guideway-fmu diagnose: error:" in done.stderr
     assert str(run) in done.stderr
+
+
+def test_cli_diagnose_out_that_is_a_file_exits_2(tmp_path):
+    from guideway_fmu.diagnose import truth
+
+    truth.write_example(tmp_path / "run")
+    taken = tmp_path / "taken"
+    taken.write_text("")
+    done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "diagnose", str(tmp_path / "run"),
+                           "--out", str(taken)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert "Traceback" not in done.stderr and str(taken) in done.stderr

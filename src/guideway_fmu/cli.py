@@ -135,8 +135,8 @@ def main(argv: list[str] | None = None) -> int:
             print(json.dumps(rig_facts(args.u), indent=2))
         elif args.command in ("ehl", "ehl-cycle"):
             print(_ehl(args))
-    except (ValueError, FileNotFoundError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
-        # EHLConvergenceError
+    except (ValueError, OSError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
+        # EHLConvergenceError, files that cannot be read or written
         print(f"guideway-fmu {args.command}: error: {exc}", file=sys.stderr)
         return 2
     return 0
