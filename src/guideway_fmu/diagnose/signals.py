@@ -25,6 +25,20 @@ def noise_rms(y) -> float:
     return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0))
 
 
+def channel_noise(y) -> float:
+    """RMS noise of a measured channel: :func:`noise_rms`, but at least the rounding noise
+    q / sqrt(12) of a channel whose values lie on a lattice of step q (an encoder count, or a
+    difference of counts), where most second differences are 0 and their MAD says nothing."""
+    y = np.asarray(y, dtype=float)
+    steps = np.abs(np.diff(y))
+    steps = steps[steps > 1e-9 * max(float(np.max(np.abs(y))), 1e-300)]
+    if steps.size == 0:
+        return noise_rms(y)
+    q = float(np.min(steps))
+    on_lattice = np.mean(np.abs(steps / q - np.round(steps / q)) < 1e-3) > 0.99
+    return max(noise_rms(y), q / np.sqrt(12.0) if on_lattice else 0.0)
+
+
 @dataclass
 class Motion:
     """Feed motion at the samples: x [m], v [m/s], a [m/s^2]; ``standstill`` marks samples whose
@@ -96,7 +110,7 @@ def derive_motion(time, columns: dict) -> Motion:
 
     def measured(name):
         y = columns[name]
-        if noise_rms(y) > NOISY * max(np.ptp(y), 1e-300):
+        if channel_noise(y) > NOISY * max(np.ptp(y), 1e-300):
             how[name] = f"measured, smoothed ({filt})"
             return grid.filter(y)
         how[name] = "measured"
