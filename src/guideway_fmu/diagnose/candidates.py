@@ -182,9 +182,12 @@ class PreslidingHysteresis(Candidate):
         return float(np.sign(ctx.motion.v[0])) if not ctx.motion.standstill[0] else 0.0
 
     def distances(self, ctx):
+        """24 pre-sliding distances [m], geometric, from a thousandth of the median motion per
+        sample (a distance of a few encoder counts still shows in the samples right after a
+        reversal) to a tenth of the stroke."""
         step = np.median(np.abs(np.diff(ctx.motion.x)))
         stroke = np.ptp(ctx.motion.x)
-        return np.geomspace(max(0.3 * step, 1e-5 * stroke, 1e-9), max(0.1 * stroke, 1e-8), 16)
+        return np.geomspace(max(1e-3 * step, 1e-7 * stroke, 1e-10), max(0.1 * stroke, 1e-8), 24)
 
     def settings(self, ctx):
         d = self.distances(ctx)
