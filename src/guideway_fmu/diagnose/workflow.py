@@ -137,9 +137,9 @@ def name_effect(run_dir) -> Naming:
             equation, law, n_law = regression.propose(ctx, residual, fit_mask, where["frequencies"])
             law_score = bic_base - _bic(residual - law, held, baseline.n_parameters + n_law)
             explains = (law_score > SCORE_MIN
-                        and share(locate.gap(y, y - residual + law, held)) >= LAW_EXPLAINED)
+                        and share(locate.gap(y, baseline.prediction + law, held)) >= LAW_EXPLAINED)
             foreign_explains = (foreign_score > SCORE_MIN and share(
-                locate.gap(y, y - residual + foreign, held)) >= LAW_EXPLAINED)
+                locate.gap(y, baseline.prediction + foreign, held)) >= LAW_EXPLAINED)
             if explains or foreign_explains:
                 effect = "unknown"
             else:  # structure no model or law accounts for: within what the data can resolve
