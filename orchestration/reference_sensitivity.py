@@ -1,12 +1,14 @@
 """How predictable is a scenario? The monolithic reference against itself, slightly disturbed.
 
 For each scenario, the reference (LSODA, rtol 1e-10) is solved again (a) with the body started
-1e-12 m off its rest position and (b) at rtol 1e-12, and the RMS change of Contact.F_upper is
-printed relative to its range, over the whole run and per eighth of it. Where (a) grows to
-per cent levels the response is chaotic: no co-simulation (and no other integrator) can follow
-the trajectory to 1 % over a full feed cycle, and only statistics of the response (envelope,
-spectrum) are meaningful there. Where it stays tiny, a larger co-simulation error comes from the
-coupling itself (for the lightly damped contact, mostly a phase drift of the free vibration).
+1e-12 m off its rest position, (b) at rtol 1e-12 and (c) at rtol 1e-9, and the RMS change of
+Contact.F_upper is printed relative to its range, over the whole run and per eighth of it (a).
+Where (a) grows to per cent levels the response is chaotic: no co-simulation (and no other
+integrator) can follow the trajectory to 1 % over a full feed cycle, and only statistics of the
+response (envelope, spectrum) are meaningful there. Where (c) reaches per cent levels, the
+trajectory is that sensitive to errors of 1e-9: a co-simulation whose error exceeds 1 % there
+is no worse than a good integrator one decade looser than the reference. Where all stay tiny, a
+larger co-simulation error comes from the coupling itself.
 
     python reference_sensitivity.py                       # every paper-000 scenario, 0.2 s
     python reference_sensitivity.py scenarios/paper000_9000N_2500Hz_dry.toml --stop 0.1
@@ -46,11 +48,13 @@ for path in args.scenarios or sorted((HERE / "scenarios").glob("paper000_*.toml"
     times = np.arange(exp.start, exp.stop + 1e-12, s.record_interval or exp.step)
     base = monolithic.simulate(s, times=times).columns[SIGNAL]
     scale = float(np.ptp(base))
-    tight = monolithic.simulate(s, times=times, rtol=1e-12).columns[SIGNAL]
+    changed_rtol = {f"rms_rtol_{rtol:g}": rms_parts(
+        monolithic.simulate(s, times=times, rtol=rtol).columns[SIGNAL], base, scale)[0]
+        for rtol in (1e-12, 1e-9)}
     body = next(n for n, c in s.components.items() if c.fmu.stem == "VerticalDynamics")
     s.components[body].parameters["y_start"] = args.offset
     moved = monolithic.simulate(s, times=times).columns[SIGNAL]
     offset_rms, offset_parts = rms_parts(moved, base, scale)
     print(json.dumps({"scenario": s.name, "signal": SIGNAL, "offset_m": args.offset,
                       "rms_offset": offset_rms, "rms_offset_per_eighth": offset_parts,
-                      "rms_rtol_1e-12": rms_parts(tight, base, scale)[0]}), flush=True)
+                      **changed_rtol}), flush=True)

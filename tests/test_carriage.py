@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from guideway_fmu.physics import carriage
+from guideway_fmu.physics.roller_contact import OpposedRows
 
 BODY = carriage.Body()  # M = 2.9 kg, g = 9.80665 m/s^2
 K = 4.98e9  # N/m, about the lubricated guideway stiffness at y = 0
@@ -151,3 +152,54 @@ def test_body_defaults_validate():
 def test_body_validate_refuses_bad_field_naming_it(field, value):
     with pytest.raises(ValueError, match=f"Body.{field}"):
         dataclasses.replace(BODY, **{field: value}).validate()
+
+
+# -- the contact's force law handed to the body (roller_contact.OpposedRows) ---------------------
+OFFSET = 1e-4  # m, upper approach at y = 0 of the linear law: the row never opens
+
+
+def linear_rows(stiffness):
+    """The spring K (y + OFFSET) as a law: exponent 1, upper row only (the lower never closes)."""
+    return OpposedRows(force_1um=stiffness * 1e-6, exponent=1.0, sine=1.0,
+                       approach_upper=OFFSET, approach_lower=-1.0)
+
+
+@pytest.mark.parametrize("h", [PERIOD / 100, 1.7 * PERIOD], ids=["T/100", "1.7T"])
+def test_step_law_limiting_case_linear_law_matches_closed_form_oscillator(h):
+    # exponent 1 and one row: F = K (y + OFFSET), with K OFFSET added to F_in the oscillator of
+    # test_step_linear_contact_matches_closed_form_harmonic_oscillator around (M g + F_EXT) / K.
+    rows = linear_rows(K)
+    n_steps = max(int(30 * PERIOD / h), 20)
+    ys, y, v = [Y0], Y0, V0
+    for _ in range(n_steps):
+        y, v, _ = carriage.step(BODY, y, v, h, F_EXT + K * OFFSET, 123.0, 0.0, 0.0,
+                                rows=rows)  # the held 123 N is not used
+        ys.append(y)
+    t = h * np.arange(n_steps + 1)
+    w = 2 * math.pi / PERIOD
+    y_exact = Y_EQ + (Y0 - Y_EQ) * np.cos(w * t) + V0 / w * np.sin(w * t)
+    bound = 1e-7 * w * t[-1] * math.hypot(Y0 - Y_EQ, V0 / w)
+    np.testing.assert_allclose(ys, y_exact, rtol=0, atol=bound)
+
+
+def test_step_law_with_lift_off_and_moving_films_matches_scipy_dop853():
+    # One 20 us step of the 2.9 kg body on the guideway's law (n = 10/9) while the films move
+    # at 5 mm/s and 2 mm/s and the lower row opens within the step: against an independent
+    # DOP853 solution of the same ODE at rtol 1e-12.
+    from scipy.integrate import solve_ivp
+
+    rows = OpposedRows(force_1um=2.6e3, exponent=10 / 9, sine=math.sqrt(0.5),
+                       approach_upper=1.2e-6, approach_lower=3e-8, rate_upper=5e-3,
+                       rate_lower=2e-3)
+    load = carriage.ExternalLoad(static=100.0, amplitude=3000.0, frequency=4500.0)
+    t0, h, y0, v0 = 1e-4, 2e-5, 0.0, 0.02
+
+    def rhs(t, s):
+        return [s[1], BODY.gravity + (load(t) - rows.force(s[0], t - t0)) / BODY.mass]
+
+    ref = solve_ivp(rhs, (t0, t0 + h), [y0, v0], method="DOP853", rtol=1e-12, atol=1e-16)
+    y1, v1, _ = carriage.step(BODY, y0, v0, h, 0.0, 0.0, t=t0, load=load, rows=rows)
+    assert rows.approach_lower + rows.rate_lower * h - rows.sine * y1 < 0  # the row opened
+    assert y1 == pytest.approx(ref.y[0, -1], rel=1e-7)
+    # RK4 loses its order at the kink where the row opens (F'' is unbounded there)
+    assert v1 == pytest.approx(ref.y[1, -1], rel=1e-4)

@@ -25,6 +25,7 @@ from fmpy.logging import addLoggerProxy
 from fmpy.validation import validate_fmu
 
 from guideway_fmu.build import ALL_FMUS, FMUS
+from guideway_fmu.physics.roller_contact import OpposedRows
 
 NAMES = list(FMUS)
 STATUS_DISCARD = 2
@@ -105,13 +106,13 @@ class Slave:
         for name, value in values.items():
             var = self.variables[name]
             setter = {"Real": self.fmu.setReal, "Integer": self.fmu.setInteger,
-                      "String": self.fmu.setString}[var.type]
+                      "Boolean": self.fmu.setBoolean, "String": self.fmu.setString}[var.type]
             setter([var.valueReference], [value])
 
     def get(self, name):
         var = self.variables[name]
         getter = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger,
-                  "String": self.fmu.getString}[var.type]
+                  "Boolean": self.fmu.getBoolean, "String": self.fmu.getString}[var.type]
         return getter([var.valueReference])[0]
 
     def outputs(self):
@@ -172,14 +173,20 @@ HAND_BASE_UNITS = {"m": (0, 1, 0), "m/s": (0, 1, -1), "m/s2": (0, 1, -2), "N": (
 _CONTACT = {"y": ("input", "m"), "y_dot": ("input", "m/s"), "u": ("input", "m/s"),
             "F_contact": ("output", "N"), "F_upper": ("output", "N"), "F_lower": ("output", "N"),
             "h_upper": ("output", "m"), "h_lower": ("output", "m"),
-            "K_contact": ("output", "N/m"), "C_contact": ("output", "N.s/m")}
+            "K_contact": ("output", "N/m"), "C_contact": ("output", "N.s/m"),
+            "law_force_1um": ("output", "N"), "law_exponent": ("output", "1"),
+            "law_sine": ("output", "1"), "law_approach_upper": ("output", "m"),
+            "law_approach_lower": ("output", "m"), "law_rate_upper": ("output", "m/s"),
+            "law_rate_lower": ("output", "m/s")}
+_LAW_INPUTS = {name: ("input", unit) for name, (_, unit) in _CONTACT.items()
+               if name.startswith("law_")}  # the body takes the contact's force law
 CONTRACT = {
     "FeedKinematics": {"u_cmd": ("input", "m/s"), "x": ("output", "m"), "u": ("output", "m/s"),
                        "a": ("output", "m/s2")},
     "VerticalDynamics": {"F_contact": ("input", "N"), "F_ext": ("input", "N"),
                          "K_contact": ("input", "N/m"), "C_contact": ("input", "N.s/m"),
                          "y": ("output", "m"), "y_dot": ("output", "m/s"),
-                         "y_ddot": ("output", "m/s2")},
+                         "y_ddot": ("output", "m/s2"), **_LAW_INPUTS},
     "ContactDryHertz": _CONTACT,
     "ContactEHL": _CONTACT,
     "FrictionMixedEHL": {"F_upper": ("input", "N"), "F_lower": ("input", "N"),
@@ -261,6 +268,50 @@ def test_contact_stiffness_matches_central_finite_difference(open_fmu, name, sta
     f_minus = contact.get("F_contact")
     assert stiffness > 0.0
     assert stiffness == pytest.approx((f_plus - f_minus) / (2 * dy), rel=1e-5)
+
+
+@pytest.mark.parametrize("name", ["ContactDryHertz", "ContactEHL"])
+@pytest.mark.parametrize("y", [-3e-6, 1e-6, 1e-4])
+def test_contact_law_outputs_reproduce_the_net_force_hand_calculation(open_fmu, name, y):
+    # the law the body integrates (OpposedRows) gives the contact's own F_contact at its input y
+    contact = open_fmu(name, y=y, u=0.29)
+    out = contact.outputs()
+    law = {k[4:]: v for k, v in out.items() if k.startswith("law_")}
+    assert law["force_1um"] == pytest.approx(2 * ROLLERS * SIN45 * K_PALMGREN * 1e-6 ** (10 / 9),
+                                             rel=1e-12)
+    assert (law["exponent"], law["sine"]) == pytest.approx((10 / 9, SIN45), rel=1e-14)
+    assert law["approach_upper"] == pytest.approx(DELTA0 + out["h_upper"], rel=1e-12)
+    assert OpposedRows(**law).force(y) == pytest.approx(out["F_contact"], rel=1e-10, abs=1e-9)
+
+
+def test_ehl_law_rates_match_the_film_change_over_a_short_step_numerical_derivative(open_fmu):
+    ehl = open_fmu("ContactEHL", y=0.0, u=0.29)  # steady films at y = 0 ...
+    ehl.set(y=1e-6)  # ... squeezed (upper) and relieved (lower) by the new load
+    before = ehl.outputs()
+    dt = 1e-9
+    ehl.step(dt)
+    after = ehl.outputs()
+    for row in ("upper", "lower"):
+        rate = (after[f"h_{row}"] - before[f"h_{row}"]) / dt
+        assert before[f"law_rate_{row}"] != 0.0
+        assert before[f"law_rate_{row}"] == pytest.approx(rate, rel=1e-4)
+
+
+def test_ehl_interpolated_inputs_limiting_case_straight_motion_equals_extrapolation(open_fmu):
+    # a body moving at constant speed: the Hermite curve from the previous inputs (y = 0) to the
+    # present ones (y = v h, at the END of the step) is the line the extrapolating contact
+    # follows from y = 0 (inputs at the START): the films must agree to round-off.
+    v, h = 0.05, 2e-5
+    start = open_fmu("ContactEHL", "start", y=0.0, y_dot=v, u=0.29)
+    end = open_fmu("ContactEHL", "end", y=0.0, y_dot=v, u=0.29, interpolate_inputs=True)
+    end.set(y=v * h)
+    start.step(h)
+    end.step(h)
+    for film in ("h_upper", "h_lower"):
+        assert end.get(film) == pytest.approx(start.get(film), rel=1e-13)
+    plain = open_fmu("ContactEHL", "plain", y=v * h, y_dot=v, u=0.29)  # extrapolating from v h
+    plain.step(h)
+    assert abs(plain.get("h_upper") - end.get("h_upper")) > 1e-6 * end.get("h_upper")
 
 
 def test_dry_contact_loss_unloads_lower_rollers_exactly(open_fmu):

@@ -69,4 +69,5 @@ def test_reference_sensitivity_reports_a_small_growing_change(fmu_dir, tmp_path)
     # a 1e-12 m offset on a ~1 um approach: a change of order 1e-6 of the range, not zero
     assert 0 < report["rms_offset"] < 1e-4
     assert 0 < report["rms_rtol_1e-12"] < 1e-4
+    assert 0 < report["rms_rtol_1e-09"] < 1e-3
     assert len(report["rms_offset_per_eighth"]) == 8

@@ -2,7 +2,9 @@
 import numpy as np
 import pytest
 
+from guideway_fmu.physics import guideway
 from guideway_fmu.physics import roller_contact as rc
+from guideway_fmu.physics.roller_contact import OpposedRows
 
 ROLLER_LENGTH = 8.0e-3  # m, paper 000 Table 2
 # Palmgren by hand, two contacts in series, l = 8 mm:
@@ -62,3 +64,33 @@ def test_approach_for_load_limiting_case_no_load_gives_zero(load):
 def test_palmgren_stiffness_refuses_bad_length_naming_it():
     with pytest.raises(ValueError, match="roller_length"):
         rc.palmgren_stiffness(0.0)
+
+
+def test_opposed_rows_hand_calculation_both_rows_and_an_opened_row():
+    rows = OpposedRows(force_1um=1000.0, exponent=10 / 9, sine=0.5, approach_upper=2e-6,
+                       approach_lower=1e-6, rate_upper=1e-3, rate_lower=-2e-3)
+    # y = 1e-6, tau = 0: d_U = 2.5 um, d_L = 0.5 um
+    assert rows.force(1e-6) == pytest.approx(1000.0 * (2.5 ** (10 / 9) - 0.5 ** (10 / 9)), rel=1e-14)
+    # tau = 1e-4 s: d_U = 2.6 um, d_L = 0.3 um
+    assert rows.force(1e-6, 1e-4) == pytest.approx(1000.0 * (2.6 ** (10 / 9) - 0.3 ** (10 / 9)),
+                                                   rel=1e-14)
+    # y = 3e-6: d_L = -0.5 um, the lower row is open and carries nothing
+    assert rows.force(3e-6) == pytest.approx(1000.0 * 3.5 ** (10 / 9), rel=1e-14)
+
+
+@pytest.mark.parametrize("y", [-3e-6, 0.0, 1e-6, 4e-6])
+def test_opposed_rows_stiffness_matches_numerical_derivative(y):
+    rows = OpposedRows(force_1um=1000.0, exponent=10 / 9, sine=0.5, approach_upper=2e-6,
+                       approach_lower=1e-6)
+    dy = 1e-12
+    assert rows.stiffness(y) == pytest.approx((rows.force(y + dy) - rows.force(y - dy)) / (2 * dy),
+                                              rel=1e-6)
+
+
+def test_opposed_rows_of_the_guideway_kernel_equal_its_net_force_with_moved_films():
+    kernel = guideway.RowKernel(guideway.Guideway())
+    rows = kernel.rows(3e-7, 2e-7, 1e-3, -5e-4)
+    for y in (-2e-6, 0.0, 5e-7, 3e-6):
+        assert rows.force(y) == pytest.approx(kernel.contact(y, 3e-7, 2e-7)[0], rel=1e-12)
+        assert rows.force(y, 1e-4) == pytest.approx(kernel.contact(y, 4e-7, 1.5e-7)[0], rel=1e-12)
+        assert rows.stiffness(y) == pytest.approx(kernel.contact(y, 3e-7, 2e-7)[1], rel=1e-12)

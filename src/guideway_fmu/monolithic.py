@@ -13,8 +13,9 @@ Equations, in continuous time:
   ContactEHL with film_model "extrapolated" (``RowKernel.film_rate``, the squeeze relation);
 * M y'' = M g + F_e(t) + F_ext - F_contact, F_e the ``ExternalLoad`` of the load_* parameters at
   t, F_ext constant (its start value or the scenario's), F_contact the net force of the contact
-  whose F_contact output feeds the body, plus damping * y_dot. The body's K_contact and C_contact
-  inputs are not used: they only shape the FMU's step, not the equation;
+  whose F_contact output feeds the body, plus damping * y_dot. The body's K_contact, C_contact
+  and law_* inputs and the contact's interpolate_inputs (``STEP_SETTINGS``) are not used: they
+  only shape the FMUs' steps, not the equations;
 * the feed velocity u is the profile evaluated at t (``velocity_at``); an unconnected input is
   constant at its start value; the dry contact has no film; film_model "pan_hamrock" is the
   quasi-static film of ``guideway.quasi_static_state`` at every evaluation (no state, slow);
@@ -54,6 +55,7 @@ Pass ``method="Radau"`` or a smaller rtol for a more accurate reference.
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass
@@ -63,6 +65,7 @@ from fmpy import read_model_description
 from scipy.integrate import solve_ivp
 
 from .physics import carriage, feed_profiles, friction, guideway
+from .physics import roller_contact as rc
 
 #: model identifier -> the function that builds its physics from the FMU's parameters
 BUILDERS = {
@@ -73,6 +76,8 @@ BUILDERS = {
     "FrictionMixedEHL": friction.mixed_from_parameters,
     "FrictionCoulomb": friction.coulomb_from_parameters,
 }
+#: model identifier -> parameters that shape the FMU's step only (not the equations): left out
+STEP_SETTINGS = {"ContactEHL": ("interpolate_inputs",)}
 CONTACTS = ("ContactEHL", "ContactDryHertz")
 FRICTIONS = ("FrictionMixedEHL", "FrictionCoulomb")
 
@@ -156,7 +161,8 @@ class _Component:
         values.update({n: _typed(variables[n], v) for n, v in comp.parameters.items()})
         self.name, self.kind, self.values = name, kind, values
         self.inputs = [n for n, v in variables.items() if v.causality == "input"]
-        params = {n: values[n] for n, v in variables.items() if v.causality == "parameter"}
+        params = {n: values[n] for n, v in variables.items()
+                  if v.causality == "parameter" and n not in STEP_SETTINGS.get(kind, ())}
         try:
             self.physics = BUILDERS[kind](**params)
         except (TypeError, ValueError) as exc:
@@ -354,6 +360,14 @@ class _Model:
             fu, fl = guideway.row_loads(g, y, hu, hl)
             k = guideway.frozen_film_stiffness(g, y, hu, hl)
         damping = c.values["damping"]
+        rates = (guideway.film_rates(g, y, hu, hl, u) if c.model == "extrapolated"
+                 else (0.0 * y, 0.0 * y))
+        law_gain = 0.0 if c.model == "pan_hamrock" else float(guideway.net_force(
+            g, rc.contact_force(rc.MICRON, g.k), 0.0))
+        full = functools.partial(np.full, y.shape)
         return {"F_contact": guideway.net_force(g, fu, fl) + damping * v, "F_upper": fu,
                 "F_lower": fl, "h_upper": hu, "h_lower": hl, "K_contact": k,
-                "C_contact": np.full(y.shape, damping)}
+                "C_contact": full(damping), "law_force_1um": full(law_gain),
+                "law_exponent": full(rc.EXPONENT), "law_sine": full(math.sin(g.contact_angle)),
+                "law_approach_upper": g.delta0 + hu, "law_approach_lower": g.delta0 + hl,
+                "law_rate_upper": rates[0], "law_rate_lower": rates[1]}

@@ -21,7 +21,7 @@ import math
 from abc import abstractmethod
 from xml.etree.ElementTree import Element, SubElement
 
-from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
+from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
 
 from .units import BASE_UNITS
@@ -48,9 +48,11 @@ class GuidewaySlave(Fmi2Slave):
 
     # -- registration -------------------------------------------------------------------
     def parameter(self, name: str, start, unit: str | None, description: str) -> None:
-        """A tunable parameter: Real (with ``unit``), Integer (int start) or String (str start)."""
+        """A tunable parameter: Real (with ``unit``), Boolean (bool start), Integer (int start) or
+        String (str start)."""
         setattr(self, name, start)
-        kind = String if isinstance(start, str) else Integer if isinstance(start, int) else Real
+        kind = (String if isinstance(start, str) else Boolean if isinstance(start, bool)
+                else Integer if isinstance(start, int) else Real)
         self.register_variable(kind(
             name, causality=Fmi2Causality.parameter, variability=Fmi2Variability.tunable,
             description=description, getter=lambda: getattr(self, name),

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from ..physics import carriage
+from ..physics.roller_contact import EXPONENT, OpposedRows
 from .base import GuidewaySlave
 
 
@@ -11,8 +12,11 @@ class VerticalDynamics(GuidewaySlave):
     F_e(t) = load_static + load_amplitude sin(2 pi load_frequency t + load_phase) is the external
     load of paper 000 eq. 1b, evaluated at every instant; the F_ext input is held over a step.
     Over each communication step the contact force is extrapolated with the K_contact and
-    C_contact inputs (leave them unconnected, 0, to hold F_contact constant) and the linear ODE is
-    integrated with RK4 substeps (physics/carriage.py): stable for K, C >= 0 at any step.
+    C_contact inputs (leave them unconnected, 0, to hold F_contact constant), or, when
+    law_force_1um > 0, it is the contact's force law given by the law_* inputs (the two opposed
+    roller rows of physics/roller_contact.OpposedRows, films moving at the given rates) plus
+    C_contact y_dot, evaluated at every instant; the ODE is integrated with RK4 substeps
+    (physics/carriage.py): stable for K, C >= 0 at any step.
     """
 
     description = __doc__.splitlines()[0]
@@ -34,6 +38,15 @@ class VerticalDynamics(GuidewaySlave):
                    non_negative=True)
         self.input("C_contact", 0.0, "N.s/m", "tangent damping dF_contact/dy_dot (optional, >= 0)",
                    non_negative=True)
+        self.input("law_force_1um", 0.0, "N", "contact force law: net force of the rows at 1 um "
+                   "approach (0: no law, use the tangents)", non_negative=True)
+        self.input("law_exponent", EXPONENT, "1", "contact force law: exponent of the row approaches",
+                   non_negative=True)
+        self.input("law_sine", 1.0, "1", "contact force law: row approach per unit y")
+        self.input("law_approach_upper", 0.0, "m", "contact force law: upper row approach at y = 0")
+        self.input("law_approach_lower", 0.0, "m", "contact force law: lower row approach at y = 0")
+        self.input("law_rate_upper", 0.0, "m/s", "contact force law: rate of the upper approach")
+        self.input("law_rate_lower", 0.0, "m/s", "contact force law: rate of the lower approach")
         self.output("y", "m", "vertical displacement")
         self.output("y_dot", "m/s", "vertical velocity")
         self.output("y_ddot", "m/s2", "vertical acceleration", depends=("F_contact", "F_ext"))
@@ -50,8 +63,12 @@ class VerticalDynamics(GuidewaySlave):
 
     def advance(self, t, h):
         body, load = self.model()
+        rows = OpposedRows(self.law_force_1um, self.law_exponent, self.law_sine,
+                           self.law_approach_upper, self.law_approach_lower, self.law_rate_upper,
+                           self.law_rate_lower) if self.law_force_1um > 0.0 else None
         self.y, self.y_dot, _ = carriage.step(body, self.y, self.y_dot, h, self.F_ext, self.F_contact,
-                                              self.K_contact, self.C_contact, t=t, load=load)
+                                              self.K_contact, self.C_contact, t=t, load=load,
+                                              rows=rows)
         self.time = t + h
 
     def evaluate(self):

@@ -10,7 +10,13 @@ moves values between FMU instances (see master.py). Inputs are held over each st
 * Stabilised: Gauss-Seidel plus, for each declared tangent (system.py), the stiff component's
   tangent stiffness/damping dF/dx, dF/dv (an output of the FMU, or a central finite difference
   of its feedthrough output over its input, taken by the master) passed to the consumer, which
-  then integrates F ~ F0 + K (x - x0) + C (v - v0) over the step instead of a held F0.
+  then integrates F ~ F0 + K (x - x0) + C (v - v0) over the step instead of a held F0. A tangent
+  may also pass an interface model (``model``: more outputs, such as the contact's force law
+  with its films' rates, to consumer inputs) and set parameters the coupling needs
+  (``settings``, such as the contact's interpolate_inputs: under Gauss-Seidel its inputs are the
+  body's state at the end of the step). With the law the body integrates the contact's own
+  frozen-film force within the step, which is what keeps lift-off and re-contact of a row (where
+  the tangent is useless) accurate.
   For a linear spring-mass split over two FMUs that is the exact coupling: stable for any h
   (the explicit schemes need omega h < 4 zeta, never stable without damping). For a nonlinear
   force the defect d = |F1 - F0 - K0 dx - C0 dv| at the end of the step is the local error of
@@ -124,13 +130,22 @@ def _slope_key(spec, output, input_name):
 
 
 def tangent_links(tangents) -> dict:
-    """{bus key of each stiffness/damping: consumer input} for the Bus (master.py)."""
+    """{bus key of each stiffness/damping/model output: consumer input} for the Bus (master.py)."""
     links = {}
     for t in tangents:
         links[_slope_key(t, t.stiffness, t.position)] = t.to_stiffness
         if t.velocity:
             links[_slope_key(t, t.damping, t.velocity)] = t.to_damping
+        links.update({(t.instance, out): target for out, target in t.model})
     return links
+
+
+def tangent_settings(tangents) -> dict:
+    """{instance: {parameter: value}} that the stabilised coupling sets at initialisation."""
+    settings = {}
+    for t in tangents:
+        settings.setdefault(t.instance, {}).update(t.settings)
+    return settings
 
 
 class Tangent:

@@ -15,7 +15,7 @@ import numpy as np
 from fmpy.fmi1 import FMICallException
 from tqdm import tqdm
 
-from .algorithms import ALGORITHMS, order, tangent_links
+from .algorithms import ALGORITHMS, order, tangent_links, tangent_settings
 from .fmu_instance import FmuInstance
 from .recording import Recorder, Recording
 from .system import System
@@ -159,7 +159,9 @@ def simulate(system: System, progress: bool = False) -> Result:
     record = _recorded(system)
     observed = {tuple(r.split(".", 1)) for r in record}
     exchanged = {(c.source, c.output) for c in system.connections}
-    links = tangent_links(system.tangents) if exp.algorithm == "stabilised" else {}
+    stabilised = exp.algorithm == "stabilised"
+    links = tangent_links(system.tangents) if stabilised else {}
+    settings = tangent_settings(system.tangents) if stabilised else {}
     exchanged |= {src for src in links if src[1] in system.variables[src[0]]}
     exchanged |= {(t.instance, t.force) for t in system.tangents}
     instances: dict[str, FmuInstance] = {}
@@ -179,7 +181,8 @@ def simulate(system: System, progress: bool = False) -> Result:
             inst = instances[name]
             inst.fmu.setupExperiment(startTime=exp.start, stopTime=exp.stop)
             inst.fmu.enterInitializationMode()
-            for key, value in system.components[name].parameters.items():
+            for key, value in {**system.components[name].parameters,
+                               **settings.get(name, {})}.items():
                 inst.set(key, value)
             _write_available(bus, name)
             inst.fmu.exitInitializationMode()

@@ -32,6 +32,11 @@ key. The format (tables and keys, all SI units)::
     velocity = "Contact.y_dot"      # optional: the same for the damping dforce/dvelocity
     damping = "Contact.C_contact"
     to_damping = "Body.C_contact"
+    model = { law_force_1um = "Body.law_force_1um" }   # optional: further outputs of the force's
+                                    #   instance (an interface model of the force over the step,
+                                    #   such as its law) -> consumer inputs
+    settings = { interpolate_inputs = true }   # optional: parameters of the force's instance
+                                    #   that this coupling needs, set at initialisation
 
     [record]
     variables = ["Contact.F_upper"] # optional; default: every output of every component
@@ -88,7 +93,9 @@ class Tangent:
     """The linearisation of a stiff feedthrough output that the stabilised algorithm passes on.
 
     ``stiffness``/``damping`` are output names of the force's instance, or "fd" for a central
-    finite difference of ``force`` over ``position``/``velocity`` taken by the master.
+    finite difference of ``force`` over ``position``/``velocity`` taken by the master. ``model``
+    pairs further outputs of that instance with the consumer inputs they feed, ``settings`` its
+    parameters with the values the coupling needs; both only under the stabilised algorithm.
     """
 
     instance: str
@@ -99,6 +106,8 @@ class Tangent:
     velocity: str | None = None
     damping: str | None = None
     to_damping: tuple[str, str] | None = None
+    model: tuple[tuple[str, tuple[str, str]], ...] = ()
+    settings: tuple[tuple[str, object], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -243,8 +252,11 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> System:
         to_k, to_c = t.ref("to_stiffness"), t.ref("to_damping", required=False)
         if (named["velocity"] is None) != (named["damping"] is None) or (named["damping"] is None) != (to_c is None):
             raise t.error("velocity", "velocity, damping and to_damping go together")
+        model_t = _Table(src, f"tangents #{i + 1}.model", t.get("model", dict, {}))
+        model = tuple((out, model_t.ref(out)) for out in model_t.data)
+        settings = tuple(_Table(src, f"tangents #{i + 1}.settings", t.get("settings", dict, {})).data.items())
         tangents.append(Tangent(inst, force, named["position"], named["stiffness"], to_k,
-                                named["velocity"], named["damping"], to_c))
+                                named["velocity"], named["damping"], to_c, model, settings))
 
     rec_t = _Table(src, "record", top.get("record", dict, {}))
     rec_t.unknown(("variables", "interval"))
@@ -343,6 +355,16 @@ def check(system: System, src: str) -> System:
             if t.damping != "fd":
                 need(table, "damping", t.instance, t.damping, ("output",))
             need(table, "to_damping", *t.to_damping, ("input",))
+        for out, target in t.model:
+            need(f"{table}.model", out, t.instance, out, ("output",))
+            need(f"{table}.model", out, *target, ("input",))
+            if target in fed:
+                raise fail(f"{table}.model", out, f"{target[0]}.{target[1]} is already fed by "
+                           f"{fed[target]}")
+        for key, value in t.settings:
+            v = need(f"{table}.settings", key, t.instance, key, ("parameter",))
+            if not _fits(v.type, value):
+                raise fail(f"{table}.settings", key, f"{v.type} variable cannot take {value!r}")
     for v in system.record:
         inst, _, var = v.partition(".")
         need("record", "variables", inst, var, None)

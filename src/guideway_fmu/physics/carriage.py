@@ -5,9 +5,13 @@ load of eq. 1b (static plus harmonic, :class:`ExternalLoad`), known at every ins
 a further force held over the step. Over one communication step the contact force is taken as its
 value at the start of the step plus its tangent, F_contact(t) = F0 + K (y - y0) + C (y' - v0),
 with the contact model's tangent stiffness K [N/m] and damping C [N s/m] (K = C = 0: the force
-is held constant). That linear ODE is integrated with the classical fourth-order Runge-Kutta
-method on equal substeps of at most SUBSTEP_PHASE / omega, omega the largest of sqrt(K/M), C/M
-and the load's angular frequency: stable at any communication step, with a phase error near 1e-8 rad per radian of motion.
+is held constant), or, when the contact hands over its force law (``rows``, an
+:class:`~.roller_contact.OpposedRows`), as that law evaluated at every instant,
+F_contact = rows.force(y, t - t0) + C y'. The ODE is integrated with the classical fourth-order
+Runge-Kutta method on equal substeps of at most SUBSTEP_PHASE / omega, omega the largest of
+sqrt(K/M) (K the law's stiffness at both ends of the step when there is a law), C/M and the
+load's angular frequency: stable at any communication step for the linear tangent, with a phase
+error near 1e-8 rad per radian of motion.
 """
 from __future__ import annotations
 
@@ -15,6 +19,7 @@ import math
 from dataclasses import dataclass
 
 from . import checks
+from .roller_contact import OpposedRows
 
 STANDARD_GRAVITY = 9.80665  # m/s^2
 SUBSTEP_PHASE = 0.05  # rad, largest omega * substep of the Runge-Kutta integration
@@ -68,20 +73,32 @@ def from_parameters(mass, gravity, load_static, load_amplitude, load_frequency, 
 
 def step(body: Body, y: float, v: float, h: float, f_in: float, f_contact: float,
          k_contact: float = 0.0, c_contact: float = 0.0, t: float = 0.0,
-         load: ExternalLoad | None = None):
-    """Advance (y [m], v [m/s]) from time t [s] by the step h [s]; returns (y, v, a) at t + h."""
+         load: ExternalLoad | None = None, rows: OpposedRows | None = None):
+    """Advance (y [m], v [m/s]) from time t [s] by the step h [s]; returns (y, v, a) at t + h.
+
+    With ``rows`` the contact force is that law plus c_contact y' (f_contact and k_contact are
+    not used), else the tangent F0 + K dy + C dv (module doc).
+    """
     for name, value in (("k_contact", k_contact), ("c_contact", c_contact)):
         if not 0.0 <= value < math.inf:
             raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
     m = body.mass
-    kk, cc = k_contact / m, c_contact / m
-    # y'' = b + F_e(t)/M - kk y - cc y' with everything held over the step folded into b.
-    b = body.gravity + (f_in - f_contact + k_contact * y + c_contact * v) / m
+    cc = c_contact / m
     fe = (lambda s: 0.0) if load is None or load.amplitude == load.static == 0.0 else (
         lambda s: load(s) / m)
+    if rows is None:
+        kk = k_contact / m
+        # y'' = b + F_e(t)/M - kk y - cc y' with everything held over the step folded into b.
+        b = body.gravity + (f_in - f_contact + k_contact * y + c_contact * v) / m
 
-    def acc(s, yy, vv):
-        return b + fe(s) - kk * yy - cc * vv
+        def acc(s, yy, vv):
+            return b + fe(s) - kk * yy - cc * vv
+    else:
+        kk = max(rows.stiffness(y, 0.0), rows.stiffness(y, h)) / m
+        b = body.gravity + f_in / m
+
+        def acc(s, yy, vv):
+            return b + fe(s) - rows.force(yy, s - t) / m - cc * vv
 
     omega = max(math.sqrt(kk), cc, 0.0 if load is None else 2.0 * math.pi * load.frequency)
     n = max(1, math.ceil(h * omega / SUBSTEP_PHASE))

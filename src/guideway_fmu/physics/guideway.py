@@ -31,10 +31,9 @@ import numpy as np
 from . import checks
 from .film import (S_MAX, S_MIN, SQUEEZE_GAIN, SQUEEZE_WEIGHT, LineContact, film_law, film_rate,
                    speed_exponent, squeeze_factor, steady_film, unsqueezed_film)
-from .roller_contact import (EXPONENT, approach_for_load, contact_force, contact_stiffness,
-                             palmgren_stiffness)
+from .roller_contact import (EXPONENT, MICRON, OpposedRows, approach_for_load, contact_force,
+                             contact_stiffness, palmgren_stiffness)
 
-MICRON = 1e-6  # m, the approach at which the FMU parameter roller_load_1um gives the load
 
 
 @dataclass(frozen=True)
@@ -216,6 +215,13 @@ class RowKernel:
         ku = 10 / 9 * fu / du if du > 0.0 else 0.0
         kl = 10 / 9 * fl / dl if dl > 0.0 else 0.0
         return self.gain * (fu - fl), self.gain * self.sin * (ku + kl), fu, fl
+
+    def rows(self, h_upper: float, h_lower: float, rate_upper: float = 0.0,
+             rate_lower: float = 0.0) -> OpposedRows:
+        """The net force as the interface law the body integrates over a step: films h [m]
+        moving at the given rates [m/s]; ``rows(...).force(y)`` is ``contact(y, ...)[0]``."""
+        return OpposedRows(self.gain * self.k * MICRON ** EXPONENT, EXPONENT, self.sin,
+                           self.delta0 + h_upper, self.delta0 + h_lower, rate_upper, rate_lower)
 
     def film_rate(self, h: float, load: float, speed: float) -> float:
         """dh/dt [m/s] of one row's extrapolated film h [m] under load [N] at |u| = speed [m/s]."""
