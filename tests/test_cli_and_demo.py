@@ -41,7 +41,7 @@ def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_p
     assert cli.main(["run", str(SCENARIOS / "paper000_unloaded.toml"), "--fmus", str(fmu_dir),
                      "--stop", "1.5e-3", "--out", str(out), "--no-progress"]) == 0
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["steps"] == 750 and summary["algorithm"] == "stabilised"  # 2 us steps
+    assert summary["steps"] == 375 and summary["algorithm"] == "stabilised"  # 4 us steps
     assert summary["parameters"]["Contact"]["preload"] == 9200.0
     assert {"results.csv", "time.png", "spectrum.png", "film.png", "envelope.png"} <= set(summary["files"])
     data = np.genfromtxt(out / "results.csv", delimiter=",", names=True)
