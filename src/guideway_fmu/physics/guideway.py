@@ -35,7 +35,6 @@ from .roller_contact import (EXPONENT, MICRON, OpposedRows, approach_for_load, c
                              contact_stiffness, palmgren_stiffness)
 
 
-
 @dataclass(frozen=True)
 class Guideway:
     """A four-row roller guideway; defaults from paper 000 Table 2 and the INA RUE45-E."""
