@@ -482,6 +482,10 @@ def case(*values, id):
          id="FrictionMixedEHL-F_lower-negative"),
     case("VerticalDynamics", {"F_ext": 1000.0}, {"K_contact": -1.0}, "K_contact",
          id="VerticalDynamics-K_contact-negative"),
+    case("VerticalDynamics", {"F_ext": 1000.0}, {"law_force_1um": -1.0}, "law_force_1um",
+         id="VerticalDynamics-law_force_1um-negative"),
+    case("VerticalDynamics", {"F_ext": 1000.0}, {"law_approach_upper": NAN}, "law_approach_upper",
+         id="VerticalDynamics-law_approach_upper-nan"),
 ])
 def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, start, bad,
                                                               name_in_message):
