@@ -88,6 +88,8 @@ def test_load_reads_components_connections_tangents(tmp_path, fmu_dir):
     (lambda t: t + 'model = { law_nope = "Body.law_sine" }\n', r"\[tangents #1.model\] key 'law_nope': ContactDryHertz.fmu has no variable 'law_nope'"),
     (lambda t: t + 'model = { law_sine = "Body" }\n', r"\[tangents #1.model\] key 'law_sine': must be '<instance>.<variable>'"),
     (lambda t: t + 'model = { law_sine = "Body.F_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Body.F_contact is already fed by Contact.F_contact"),
+    (lambda t: t + 'model = { law_sine = "Body.K_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Body.K_contact is already fed by Contact.K_contact"),
+    (lambda t: t.replace('to = "Body.F_contact"', 'to = "Body.K_contact"'), r"\[tangents #1\] key 'to_stiffness': Body.K_contact is already fed by Contact.F_contact"),
     (lambda t: t + 'model = { law_sine = "Body.y" }\n', r"\[tangents #1.model\] key 'law_sine': Body.y is a output, not an input"),
     (lambda t: t + 'settings = { preload = "high" }\n', r"\[tangents #1.settings\] key 'preload': Real variable cannot take 'high'"),
     (lambda t: t + 'settings = { y = 1.0 }\n', r"\[tangents #1.settings\] key 'y': Contact.y is a input, not an parameter"),

@@ -333,16 +333,20 @@ def check(system: System, src: str) -> System:
             raise fail(table, key, f"{inst}.{var} is a {v.causality}, not an {' or '.join(causality)}")
         return v
 
-    fed = {}
+    fed = {}  # (instance, input) -> what feeds it: a connection or a tangent's link
+
+    def feed(table, key, target, source):
+        if target in fed:
+            raise fail(table, key, f"{target[0]}.{target[1]} is already fed by {fed[target]}")
+        fed[target] = source
+
     for i, c in enumerate(system.connections):
         table = f"connections #{i + 1}"
         out = need(table, "from", c.source, c.output, ("output",))
         inp = need(table, "to", c.target, c.input, ("input",))
         if out.type != inp.type:
             raise fail(table, "to", f"type {inp.type} cannot take the {out.type} output {c.source}.{c.output}")
-        if (c.target, c.input) in fed:
-            raise fail(table, "to", f"{c.target}.{c.input} is already fed by {fed[(c.target, c.input)]}")
-        fed[(c.target, c.input)] = f"{c.source}.{c.output}"
+        feed(table, "to", (c.target, c.input), f"{c.source}.{c.output}")
     for i, t in enumerate(system.tangents):
         table = f"tangents #{i + 1}"
         need(table, "force", t.instance, t.force, ("output",))
@@ -350,17 +354,17 @@ def check(system: System, src: str) -> System:
         if t.stiffness != "fd":
             need(table, "stiffness", t.instance, t.stiffness, ("output",))
         need(table, "to_stiffness", *t.to_stiffness, ("input",))
+        feed(table, "to_stiffness", t.to_stiffness, f"{t.instance}.{t.stiffness}")
         if t.velocity:
             need(table, "velocity", t.instance, t.velocity, ("input",))
             if t.damping != "fd":
                 need(table, "damping", t.instance, t.damping, ("output",))
             need(table, "to_damping", *t.to_damping, ("input",))
+            feed(table, "to_damping", t.to_damping, f"{t.instance}.{t.damping}")
         for out, target in t.model:
             need(f"{table}.model", out, t.instance, out, ("output",))
             need(f"{table}.model", out, *target, ("input",))
-            if target in fed:
-                raise fail(f"{table}.model", out, f"{target[0]}.{target[1]} is already fed by "
-                           f"{fed[target]}")
+            feed(f"{table}.model", out, target, f"{t.instance}.{out}")
         for key, value in t.settings:
             v = need(f"{table}.settings", key, t.instance, key, ("parameter",))
             if not _fits(v.type, value):
