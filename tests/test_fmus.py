@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 from ctypes import byref
 
+import numpy as np
 import pytest
 from fmpy import calloc, extract, free, read_model_description, simulate_fmu
 from fmpy.fmi1 import FMICallException
@@ -312,6 +313,42 @@ def test_ehl_interpolated_inputs_limiting_case_straight_motion_equals_extrapolat
     plain = open_fmu("ContactEHL", "plain", y=v * h, y_dot=v, u=0.29)  # extrapolating from v h
     plain.step(h)
     assert abs(plain.get("h_upper") - end.get("h_upper")) > 1e-6 * end.get("h_upper")
+
+
+def test_ehl_interpolated_inputs_convergence_on_a_curved_motion_against_scipy(open_fmu):
+    # constant acceleration from rest, y = a t^2 / 2 (the cubic Hermite curve through the inputs
+    # at both ends of each step reproduces it exactly), reaching 1 um after 20 us. The films
+    # after 20 us, stepped in n steps given the exact end-of-step inputs, against an independent
+    # DOP853 solution of the film equation along that path. Interpolated, the error is Heun's
+    # (measured: 3.4e-11 m at n = 1, 1.5e-12 m at n = 10, below 1 % of the films' change);
+    # extrapolating from end-of-step inputs leads the path by a step: 40-70x worse.
+    from scipy.integrate import solve_ivp
+
+    from guideway_fmu.physics import guideway
+
+    span, u = 2e-5, 0.29
+    a = 2e-6 / span**2  # m/s^2
+    g = guideway.Guideway()
+    _, _, hu0, hl0 = guideway.quasi_static_state(g, 0.0, u)
+    ref = solve_ivp(lambda t, f: np.ravel(guideway.film_rates(g, 0.5 * a * t * t, f[0], f[1], u)),
+                    (0.0, span), [float(hu0), float(hl0)], method="DOP853", rtol=1e-12, atol=1e-20)
+    error = {}
+    for interpolate in (True, False):
+        for n in (1, 10):
+            ehl = open_fmu("ContactEHL", f"i{interpolate}{n}", y=0.0, y_dot=0.0, u=u,
+                           interpolate_inputs=interpolate)
+            for k in range(1, n + 1):
+                t = k * span / n
+                ehl.set(y=0.5 * a * t * t, y_dot=a * t)
+                ehl.step(span / n)
+            error[interpolate, n] = max(abs(ehl.get("h_upper") - ref.y[0, -1]),
+                                        abs(ehl.get("h_lower") - ref.y[1, -1]))
+    change = np.max(np.abs(ref.y[:, -1] - ref.y[:, 0]))
+    assert change > 1e-4 * hu0  # the films really move (by about 5e-4)
+    assert error[True, 10] < error[True, 1] / 15  # faster than first order
+    assert error[True, 10] < 0.02 * change
+    for n in (1, 10):
+        assert error[False, n] > 20 * error[True, n]
 
 
 def test_dry_contact_loss_unloads_lower_rollers_exactly(open_fmu):
