@@ -11,7 +11,7 @@ from scipy.linalg import toeplitz
 
 from guideway_fmu.physics import ehl
 from guideway_fmu.physics import greenwood_tripp as gt
-from guideway_fmu.physics.ehl import discretisation
+from guideway_fmu.physics.ehl import discretisation, flow_factors
 
 CHECK_POINT = (1e-4, 1e-11, 4500.0)  # paper 000, Figs. 9-10
 
@@ -35,8 +35,10 @@ def test_elastic_operator_flattens_hertz_pressure_as_in_closed_form():
     assert np.allclose(grid.deformation(p), toeplitz(grid.column) @ p, rtol=0.0, atol=1e-12)
 
 
-def test_jacobian_matches_finite_differences():
-    contact = ehl.LineContactEHL.from_dimensionless(*CHECK_POINT, roughness=0.45e-6)
+@pytest.mark.parametrize("flow", [{}, {"average_flow": True, "peklenik": 9.0},
+                                  {"average_flow": True, "peklenik": 1 / 3}])
+def test_jacobian_matches_finite_differences(flow):
+    contact = ehl.LineContactEHL.from_dimensionless(*CHECK_POINT, roughness=0.45e-6, **flow)
     n = 41
     grid = discretisation.Grid(-4.5, 1.5, n)
     eq = discretisation.Equations(contact, grid, 0.2)
@@ -177,6 +179,72 @@ def test_asperity_share_rises_from_zero_and_film_ratio_falls_with_roughness():
     assert np.all(np.diff(boundary) > 0.0)
 
 
+@pytest.mark.parametrize("gamma", sorted(flow_factors.PRESSURE_FLOW))
+def test_flow_factors_tend_to_the_smooth_film_and_match_numerical_derivatives(gamma):
+    ratio = np.linspace(0.2, 12.0, 60)
+    phi, slope = flow_factors.pressure_flow_factor(ratio, gamma)
+    # limiting case: far from the roughness the fluid flows as between smooth surfaces
+    assert abs(flow_factors.pressure_flow_factor(200.0, gamma)[0] - 1.0) < 1e-3
+    # ridges across the motion obstruct pressure flow, ridges along it ease it
+    assert np.all(phi < 1.0) if gamma <= 1.0 else np.all(phi > 1.0)
+    step = 1e-6
+    numerical = (flow_factors.pressure_flow_factor(ratio + step, gamma)[0]
+                 - flow_factors.pressure_flow_factor(ratio - step, gamma)[0]) / (2.0 * step)
+    lowest = flow_factors.PRESSURE_FLOW[gamma][2]
+    away = np.abs(ratio - lowest) > 2.0 * step
+    assert np.allclose(slope[away], numerical[away], rtol=1e-6, atol=1e-9)
+    assert np.all(slope[ratio < lowest] == 0.0)  # held at the fit's bound below its range
+
+
+def test_mean_gap_matches_quadrature_over_the_gaussian_heights():
+    for ratio in (-2.0, -0.5, 0.0, 0.3, 1.0, 3.0, 6.0):
+        # h_T / sigma = int max(H + z, 0) phi(z) dz
+        exact = quad(lambda z: (ratio + z) * math.exp(-0.5 * z * z) / math.sqrt(2 * math.pi),
+                     -ratio, math.inf)[0]
+        gap, slope = flow_factors.mean_gap(ratio)
+        assert gap == pytest.approx(exact, rel=1e-9, abs=1e-12)
+        numerical = (flow_factors.mean_gap(ratio + 1e-6)[0]
+                     - flow_factors.mean_gap(ratio - 1e-6)[0]) / 2e-6
+        assert slope == pytest.approx(numerical, rel=1e-6)
+    assert flow_factors.mean_gap(8.0)[0] == pytest.approx(8.0, rel=1e-12)  # smooth limit
+
+
+def test_average_flow_film_falls_with_roughness_along_the_motion():
+    # Patir-Cheng average flow with ridges along the motion (gamma = 9, ground raceways and
+    # rollers), at the paper's check point; sigma up to 1e-7 m (lambda from 9 down to 0.1)
+    sigmas = [0.0, 5e-9, 1e-8, 2e-8, 3e-8, 5e-8, 7e-8, 1e-7]
+    results = [ehl.solve_dimensionless(*CHECK_POINT, roughness=s, average_flow=True,
+                                       peklenik=9.0, nodes=513) for s in sigmas]
+    share = np.array([r.asperity_load_ratio for r in results])
+    film = np.array([r.H_c * r.contact.radius for r in results])
+    film_min = np.array([r.H_min * r.contact.radius for r in results])
+    assert all(r.converged and r.load_balance_error < 1e-6 for r in results)
+    assert share[0] == 0.0 and np.all(np.diff(share) > 0.0)
+    assert np.all(np.diff(film) < 0.0) and np.all(np.diff(film_min) < 0.0)
+    lam = film[1:] / np.array(sigmas[1:])
+    assert np.all(share[1:][lam > 3.0] < 1e-9)  # lambda > 3: no asperity load to speak of
+    # limiting case: at lambda ~ 9 the flow factors are ~1 and the film is eq. 18's
+    assert film[1] == pytest.approx(film[0], rel=0.01)
+    assert film[-1] < 0.3 * film[0]
+    # isotropic roughness (gamma = 1) obstructs the pressure flow instead: the film rises at
+    # first, as Patir and Cheng found for isotropic and transverse roughness
+    iso = ehl.solve_dimensionless(*CHECK_POINT, roughness=3e-8, average_flow=True, nodes=513)
+    assert iso.H_c > results[0].H_c
+
+
+def test_average_flow_mass_flow_is_the_couette_flow_of_the_mean_gap():
+    r = ehl.solve_dimensionless(*CHECK_POINT, roughness=3e-8, average_flow=True, peklenik=9.0)
+    c = r.contact
+    wet = np.nonzero(r.p_h > 0.0)[0]
+    flow = r.mass_flow[wet[0]:wet[-1]]
+    assert np.ptp(flow) / np.mean(flow) < 1e-6
+    peak = np.argmax(np.where(np.abs(r.x) < 0.5 * c.half_width, r.p_h, 0.0))
+    rho = ehl.lubricant_state(r.p_h[peak], c.viscosity, c.pressure_viscosity)[2]
+    mean_gap = flow_factors.mean_gap(r.h[peak] / c.roughness)[0] * c.roughness
+    assert np.mean(flow) == pytest.approx(c.entrainment_velocity * rho * mean_gap, rel=2e-3)
+    assert mean_gap > 1.02 * r.h[peak]  # lambda ~ 1.4: the valleys carry 3 % more fluid
+
+
 def test_paper_check_point_with_table_4_surface(check_point):
     rough = ehl.solve_dimensionless(*CHECK_POINT, roughness=0.45e-6)  # Table 4: n, beta defaults
     c = rough.contact
@@ -202,8 +270,9 @@ def test_paper_check_point_with_table_4_surface(check_point):
     assert rough.boundary_friction > 5.0 * check_point.viscous_friction > 0.0
 
 
-def test_transient_at_constant_load_stays_at_the_steady_state():
-    contact = ehl.LineContactEHL.from_dimensionless(*CHECK_POINT)
+@pytest.mark.parametrize("rough", [{}, {"roughness": 3e-8, "average_flow": True, "peklenik": 9.0}])
+def test_transient_at_constant_load_stays_at_the_steady_state(rough):
+    contact = ehl.LineContactEHL.from_dimensionless(*CHECK_POINT, **rough)
     transit = contact.half_width / contact.entrainment_velocity
     times = np.linspace(0.0, 4.0 * transit, 6)
     run = ehl.solve_transient(contact, times, np.full(times.size, contact.load), nodes=513)
@@ -275,6 +344,10 @@ def test_sudden_load_increase_is_cushioned_by_the_squeeze_film():
      "entrainment_velocity"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, roughness=-1e-7), "roughness"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, viscosity=1e-6), "viscosity"),
+    (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, roughness=1e-8, average_flow=True,
+                                     peklenik=2.0), "peklenik"),
+    (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, roughness=1e-8, average_flow="yes"),
+     "average_flow"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, nodes=16), "nodes"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, nodes=100.5), "nodes"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, tol=0.0), "tol"),

@@ -36,6 +36,22 @@ def test_ehl_json_at_the_check_point_agrees_with_pan_hamrock(capsys):
     assert d["P_max"] == pytest.approx(np.sqrt(1e-4 / (2 * np.pi)), rel=0.05)
 
 
+def test_ehl_average_flow_option_thins_the_film_of_ground_surfaces(capsys):
+    # limiting case: eq. 18 (no --peklenik) on the same rough surface; ridges along the motion
+    # (gamma = 9) at lambda ~ 1 let the pressure drive more flow, so the film must be thinner
+    rough = ["ehl", *CHECK_POINT, "--roughness", "5e-8", "--json"]
+    plain = _json(capsys, rough)
+    ground = _json(capsys, [*rough, "--peklenik", "9"])
+    assert plain["peklenik"] is None and ground["peklenik"] == 9.0
+    assert ground["converged"] and ground["H_c"] < 0.8 * plain["H_c"]
+    assert main(["ehl", *CHECK_POINT, "--roughness", "5e-8", "--peklenik", "1/3"]) == 0
+    assert "Patir-Cheng average flow, gamma = 0.3333" in capsys.readouterr().out
+    with pytest.raises(SystemExit) as stop:  # argparse's own exit for an unreadable number
+        main(["ehl", *CHECK_POINT, "--roughness", "5e-8", "--peklenik", "1/0"])
+    assert stop.value.code == 2
+    assert "--peklenik: expected a number or a fraction like 1/3, got '1/0'" in capsys.readouterr().err
+
+
 def test_ehl_dimensional_input_equals_the_equivalent_dimensionless_one(capsys):
     er, mu = 2e11 * 2.5e-3, 0.195
     dimensional = _json(capsys, ["ehl", "--load", str(1e-4 * er), "--velocity", str(1e-11 * er / mu),
@@ -63,6 +79,9 @@ def test_ehl_table_and_plot(capsys, tmp_path):
     (["--load", "-5", "--velocity", "0.1"], ["--load", "> 0"]),
     (["--W", "1e-4", "--U", "0", "--G", "4500"], ["--U", "> 0"]),
     (["--W", "1e-4", "--U", "1e-11", "--G", "4500", "--nodes", "8"], ["nodes", ">= 33"]),
+    (["--W", "1e-4", "--U", "1e-11", "--G", "4500", "--peklenik", "9"], ["--peklenik", "--roughness"]),
+    (["--W", "1e-4", "--U", "1e-11", "--G", "4500", "--roughness", "1e-8", "--peklenik", "2"],
+     ["--peklenik", "1/9", "got 2.0"]),
 ])
 def test_ehl_bad_input_exits_2_naming_the_option(capsys, argv, words):
     assert main(["ehl", *argv]) == 2

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from fractions import Fraction
 from pathlib import Path
 
 
@@ -23,6 +24,14 @@ def _load(args):
     return s.with_changes(**changes) if changes else s
 
 
+def _ratio(text: str) -> float:
+    """A number or a fraction such as 1/3 (argparse type)."""
+    try:
+        return float(Fraction(text))
+    except (ValueError, ZeroDivisionError):
+        raise argparse.ArgumentTypeError(f"expected a number or a fraction like 1/3, got {text!r}")
+
+
 def _ehl_args(sub) -> None:
     p = sub.add_parser("ehl", help="numerical mixed-EHL solution of one roller contact")
     for name, unit in (("load", "load per unit length w' [N/m]"),
@@ -32,8 +41,12 @@ def _ehl_args(sub) -> None:
                        ("G", "material G = alpha E'"), ("radius", "reduced radius R [m] (default 2.5e-3)"),
                        ("e-reduced", "E' [Pa] (default 2e11)"), ("viscosity", "mu0 [Pa s] (default 0.195)"),
                        ("roughness", "composite RMS roughness [m] (default 0: smooth)"),
-                       ("sliding-velocity", "u_s [m/s], friction only (default 0)")):
-        p.add_argument(f"--{name}", type=float, default=None, help=unit)
+                       ("sliding-velocity", "u_s [m/s], friction only (default 0)"),
+                       ("peklenik", "Patir-Cheng average flow with this roughness orientation "
+                                    "gamma: 1 isotropic, 3/6/9 along the motion, 1/3/1/6/1/9 "
+                                    "across (default: paper 000 eq. 18, no flow factors)")):
+        p.add_argument(f"--{name}", type=_ratio if name == "peklenik" else float, default=None,
+                       help=unit)
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--plot", type=Path, default=None, help="PNG of pressure and film against x/b")
@@ -60,7 +73,7 @@ def _ehl(args) -> str:
     from . import ehl_analysis as ea
     if args.command == "ehl":
         names = ("load", "velocity", "pressure_viscosity", "W", "U", "G", "radius", "e_reduced",
-                 "viscosity", "roughness", "sliding_velocity")
+                 "viscosity", "roughness", "sliding_velocity", "peklenik")
         result, summary = ea.solve_point(ea.point_contact(**{k: getattr(args, k) for k in names}),
                                          args.nodes)
         if args.plot:

@@ -62,6 +62,7 @@ import numpy as np
 
 from .ehl_plots import plot_distribution, plot_load_history
 from .physics import checks
+from .physics.ehl import flow_factors
 from .physics.ehl import (EHLConvergenceError, EHLResult, LineContactEHL, pan_hamrock,
                           solve_steady, solve_transient, solver)
 
@@ -97,14 +98,16 @@ _POINT_CHECKS = {  # checks of ``ehl``'s options (a steady film needs u_m > 0)
 
 def point_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, U=None, G=None,
                   radius=None, e_reduced=None, viscosity=None, roughness=None,
-                  sliding_velocity=None) -> LineContactEHL:
+                  sliding_velocity=None, peklenik=None) -> LineContactEHL:
     """The contact of ``guideway-fmu ehl`` from either dimensional input (load w' [N/m] and
     entrainment velocity u_m [m/s] required, alpha [1/Pa] optional) or Hamrock's W, U, G (all
-    three). radius [m] (default RADIUS), e_reduced [Pa], viscosity [Pa s], roughness [m] and
-    sliding_velocity [m/s] apply to both; None leaves LineContactEHL's default. Raises
+    three). radius [m] (default RADIUS), e_reduced [Pa], viscosity [Pa s], roughness [m],
+    sliding_velocity [m/s] and peklenik (the average flow model's roughness orientation, which
+    switches that model on; needs roughness) apply to both; None leaves LineContactEHL's
+    default. Raises
     ValueError naming the command-line options of a mixed or incomplete set."""
     for name, value in locals().copy().items():
-        if value is not None:
+        if value is not None and name != "peklenik":
             _POINT_CHECKS[name](_option(name), value)
     dimensional = {"load": load, "velocity": velocity, "pressure_viscosity": pressure_viscosity}
     groups = {"W": W, "U": U, "G": G}
@@ -119,6 +122,15 @@ def point_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, 
     common = {k: v for k, v in {"e_reduced": e_reduced, "viscosity": viscosity,
                                 "roughness": roughness, "sliding_velocity": sliding_velocity}.items()
               if v is not None}
+    if peklenik is not None:
+        if not roughness:
+            raise ValueError("--peklenik selects the average flow model of rough surfaces; "
+                             "give --roughness > 0 with it")
+        try:
+            common["peklenik"] = flow_factors.check_peklenik(peklenik)
+        except ValueError as error:
+            raise ValueError(str(error).replace("LineContactEHL.peklenik", "--peklenik")) from None
+        common["average_flow"] = True
     radius = RADIUS if radius is None else radius
     if given_g:
         missing = [_option(k) for k, v in groups.items() if v is None]
@@ -155,6 +167,8 @@ def format_point(d: dict) -> str:
         ("load w'", f"{d['load']:.4g} N/m"),
         ("entrainment velocity u_m", f"{d['entrainment_velocity']:.4g} m/s"),
         ("radius R, roughness", f"{d['radius']:.4g} m, {d['roughness']:.3g} m"),
+        ("Reynolds equation", "paper 000 eq. 18" if d["peklenik"] is None else
+         f"Patir-Cheng average flow, gamma = {d['peklenik']:.4g}"),
         ("Hertz half-width b, p_H", f"{d['half_width'] * 1e6:.4g} um, {d['hertz_pressure'] * 1e-9:.4g} GPa"),
         ("central film h_c (H_c)", f"{d['h_c'] * 1e9:.4g} nm ({d['H_c']:.4g}; Pan-Hamrock "
                                    f"{d['H_c_pan_hamrock']:.4g})"),

@@ -65,6 +65,9 @@ where dp/dx = 0; rigid-isoviscous pure squeeze (film history within 0.5 %) and f
 (1 %) by quadrature; the paper's check point with Table 4 (asperity share 4 % at
 lambda = 0.1, matching the Greenwood-Tripp pressure on a Hertz gap). The film rises a little
 with roughness at a fixed load (the fluid carries less of it; eq. 18 has no flow factors).
+With ``average_flow`` (module ``flow_factors``, Patir and Cheng's average Reynolds equation)
+and ridges along the motion (peklenik 9) it falls monotonically: 45.9 nm smooth, 45.1 / 40.7 /
+31.2 / 9.0 nm at sigma = 0.01 / 0.03 / 0.05 / 0.1 um (lambda 4.5 / 1.4 / 0.6 / 0.1).
 
 Pan and Hamrock (1989): H_c = 2.922 W^-0.166 U^0.692 G^0.470, H_min = 1.714 W^-0.128 U^0.694
 G^0.568; deviation of this solver (default grid, E' = 2e11 Pa, mu0 = 0.195 Pa s) in %:

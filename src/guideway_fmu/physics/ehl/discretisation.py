@@ -5,7 +5,8 @@ Unknowns on a uniform grid X_0..X_{n-1}: hydrodynamic pressure P_i, film H_i, an
 approach H_00. Equations (paper 000 eqs. 15-23):
 
 * Reynolds (eq. 18): d/dX(eps dP/dX) - lam d(rho H)/dX - kappa d(rho H)/dt = 0,
-  eps = rho H^3 / eta, lam = 12 mu0 u_m R^2 / (b^3 p_H), kappa = 12 mu0 R^2 / (b^2 p_H) [s];
+  eps = rho H^3 / eta (with ``average_flow``: eps = phi_x rho H^3 / eta and H_T, the mean gap,
+  in place of H in the wedge and time terms; see :mod:`.flow_factors`), lam = 12 mu0 u_m R^2 / (b^3 p_H), kappa = 12 mu0 R^2 / (b^2 p_H) [s];
   conservative finite volumes, central Poiseuille flux, second-order upwind wedge flux
   (3 q_i - q_{i-1}) / 2, q = rho H; P = 0 at both ends. Reynolds' exit condition (eq. 21,
   P >= 0 with the film ruptured where P would be negative) by a penalty: the row
@@ -27,6 +28,7 @@ from scipy import fft
 from scipy.linalg import lapack
 
 from .. import greenwood_tripp as gt
+from . import flow_factors
 from .inputs import LineContactEHL, lubricant_state
 
 PENALTY = 1e8
@@ -81,6 +83,8 @@ class Equations:
         self.surface = contact.surface()
         if self.surface is not None:
             self.asperity_gain = gt.asperity_pressure(0.0, self.surface) / gt.f52(0.0) / ph
+        # roughness in Hertz units of film, if the average flow model applies
+        self.sigma = contact.roughness / self.h_unit if contact.average_flow else 0.0
         self.set_conditions(1.0, contact.entrainment_velocity)
 
     def set_conditions(self, load_ratio, velocity, ddt_gain=0.0, ddt_history=0.0):
@@ -107,17 +111,31 @@ class Equations:
         slope = -2.5 * self.asperity_gain * gt.gt_function(1.5, lam) / self.surface.roughness
         return pa, np.where(h > 0.0, slope * self.h_unit, 0.0)
 
+    def flow(self, H):
+        """(phi_x, d phi_x / dH, H_T, d H_T / dH): pressure flow factor and the film the fluid
+        fills [Hertz units]; 1, 0, H, 1 unless the average flow model applies."""
+        if not self.sigma:
+            return 1.0, 0.0, H, 1.0
+        phi, dphi = flow_factors.pressure_flow_factor(H / self.sigma, self.contact.peklenik)
+        gap, dgap = flow_factors.mean_gap(H / self.sigma)
+        return phi, dphi / self.sigma, gap * self.sigma, dgap
+
+    def content(self, P, H):
+        """Lubricant per unit area rho H_T [Hertz units], the quantity the time term changes."""
+        return self.lubricant(P)[2] * self.flow(H)[2]
+
     def fluxes(self, P, H):
         """Face fluxes f_{i+1/2} = eps dP/dX - lam q^ (n-1 values) and the lubricant state."""
         dx = self.grid.dx
         eta, dln, rho, drho = self.lubricant(P)
-        eps = rho * np.maximum(H, _H_FLOOR) ** 3 / eta
-        q = rho * H
+        phi, dphi, gap, dgap = self.flow(H)
+        eps = phi * rho * np.maximum(H, _H_FLOOR) ** 3 / eta
+        q = rho * gap
         qhat = np.empty(self.grid.n - 1)
         qhat[0] = 0.5 * (q[0] + q[1])
         qhat[1:] = 1.5 * q[1:-1] - 0.5 * q[:-2]
         f = 0.5 * (eps[1:] + eps[:-1]) * np.diff(P) / dx - self.lam * qhat
-        return f, (eta, dln, rho, drho, eps, q)
+        return f, (eta, dln, rho, drho, eps, q, phi, dphi, gap, dgap)
 
     def residual(self, P, H, H00, jacobian=True, pinned=None):
         """Residual vector [Reynolds (n), film (n), load (1)] and, optionally, the Jacobian.
@@ -127,7 +145,7 @@ class Equations:
         """
         g = self.grid
         n, dx = g.n, g.dx
-        f, (eta, dln, rho, drho, eps, q) = self.fluxes(P, H)
+        f, (eta, dln, rho, drho, eps, q, phi, dphi, gap, dgap) = self.fluxes(P, H)
         hist = self.ddt_history[1:-1] if np.ndim(self.ddt_history) else self.ddt_history
         L = -np.diff(f) / dx + self.kappa * (self.ddt_gain * q[1:-1] + hist)
         penalised = P[1:-1] < 0.0 if pinned is None else (P[1:-1] < 0.0) | pinned
@@ -143,7 +161,7 @@ class Equations:
         # Reynolds stencil: d(row i)/d(P, H)_{i+o}, o = -2..1, for the interior rows.
         Hc = np.maximum(H, _H_FLOOR)
         deps_dP = eps * (drho / rho - dln)
-        deps_dH = np.where(H > _H_FLOOR, 3.0 * eps / Hc, 0.0)
+        deps_dH = np.where(H > _H_FLOOR, 3.0 * eps / Hc, 0.0) + eps * dphi / phi
         a = 0.5 * (eps[1:-1] + eps[2:])
         b = 0.5 * (eps[:-2] + eps[1:-1])
         gp, gm = P[2:] - P[1:-1], P[1:-1] - P[:-2]
@@ -152,7 +170,7 @@ class Equations:
         via_eps = {-1: 0.5 * gm / dx2, 0: -0.5 * (gp - gm) / dx2, 1: -0.5 * gp / dx2}
         wedge = {o: np.full(n - 2, w) for o, w in ((-2, 0.5), (-1, -2.0), (0, 1.5))}
         wedge[-2][0], wedge[-1][0], wedge[0][0] = 0.0, -1.0, 1.0
-        dq_dP, dq_dH = drho * H, rho
+        dq_dP, dq_dH = drho * gap, rho * dgap
         cP, cH = {}, {}
         for o in (-2, -1, 0, 1):
             j = np.arange(1 + o, n - 1 + o).clip(0)

@@ -14,6 +14,7 @@ import numpy as np
 
 from .. import checks
 from .. import greenwood_tripp as gt
+from . import flow_factors
 
 # Roelands (paper 000 eq. 20): mu = mu0 exp{(ln mu0 + 9.67) [(1 + p / ROELANDS_PRESSURE)^Z - 1]}
 ROELANDS_PRESSURE = 1.0 / 5.1e-9  # Pa
@@ -70,6 +71,10 @@ class LineContactEHL:
     ``roughness`` = 0 gives smooth surfaces; otherwise the Greenwood-Tripp asperity pressure of
     :mod:`..greenwood_tripp` acts with the Table 4 asperity density and radius.
     ``sliding_velocity`` u_s = u1 - u2 only enters the friction (eq. 29), not the film.
+    ``average_flow`` (rough surfaces only) solves Patir and Cheng's average Reynolds equation
+    (:mod:`.flow_factors`, roughness orientation ``peklenik``) instead of eq. 18: the fluid
+    fills only the mean gap between the rough surfaces, and ridges along the motion
+    (``peklenik`` > 1) let the pressure drive more flow, so the film falls with roughness.
     """
 
     load: float  # w', load per unit length [N/m]
@@ -84,6 +89,8 @@ class LineContactEHL:
     asperity_radius: float = 1.5e-4  # beta [m]
     limiting_shear_stress: float = 2e6  # tau_l0 [Pa]
     limiting_shear_slope: float = 0.047  # beta_m [-]
+    average_flow: bool = False  # Patir-Cheng flow factors (True) or paper 000 eq. 18 (False)
+    peklenik: float = 1.0  # gamma of the average flow model: 1 isotropic, 9 ground along motion
 
     @classmethod
     def from_dimensionless(cls, W: float, U: float, G: float, *, radius: float = 2.5e-3,
@@ -113,6 +120,10 @@ class LineContactEHL:
             "roughness": checks.non_negative, "asperity_density": checks.positive,
             "asperity_radius": checks.positive, "limiting_shear_stress": checks.non_negative,
             "limiting_shear_slope": checks.non_negative})
+        if not isinstance(self.average_flow, bool):
+            raise ValueError(f"LineContactEHL.average_flow must be True or False, "
+                             f"got {self.average_flow!r}")
+        flow_factors.check_peklenik(self.peklenik)
         # Roelands needs ln(mu0) + 9.67 > 0.
         checks.in_range("LineContactEHL.viscosity", self.viscosity,
                         math.exp(-ROELANDS_LN_VISCOSITY), math.inf)

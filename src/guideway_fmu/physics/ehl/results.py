@@ -108,7 +108,8 @@ class EHLResult:
         c = self.contact
         out = {"W": c.W, "U": c.U, "G": c.G, "load": c.load, "radius": c.radius,
                "entrainment_velocity": c.entrainment_velocity, "roughness": c.roughness,
-               "time": float(self.time), "nodes": int(self.x.size)}
+               "time": float(self.time), "nodes": int(self.x.size),
+               "peklenik": c.peklenik if c.average_flow and c.roughness else None}
         for name in ("H_c", "H_min", "P_max", "asperity_load_ratio", "friction_coefficient",
                      "boundary_friction", "viscous_friction", "load_balance_error"):
             out[name] = float(getattr(self, name))

@@ -292,11 +292,8 @@ class _March:
         self.eq, self.state, self.time = eq, state, time
         self.tol, self.max_iterations = tol, max_iterations
         self.load_ratio, self.velocity = 1.0, eq.contact.entrainment_velocity
-        self.q, self.q_before, self.dt_before = self._content(state), None, None
+        self.q, self.q_before, self.dt_before = self.eq.content(*state[:2]), None, None
         self.iterations = self.linear = 0
-
-    def _content(self, state):
-        return self.eq.lubricant(state[0])[2] * state[1]  # rho H
 
     def advance(self, time: float, load_ratio: float, velocity: float, halvings: int):
         """Step to ``time``, where the load ratio and velocity reach the given values."""
@@ -320,6 +317,6 @@ class _March:
             return
         self.iterations += its
         self.linear += lin
-        self.q_before, self.q, self.dt_before = self.q, self._content(state), dt
+        self.q_before, self.q, self.dt_before = self.q, self.eq.content(*state[:2]), dt
         self.state, self.time = tuple(state), time
         self.load_ratio, self.velocity = load_ratio, velocity
