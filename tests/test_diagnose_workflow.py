@@ -119,3 +119,25 @@ def test_unsupported_rig_kind_is_refused_naming_key(results, tmp_path):
     (run / "rig.toml").write_text(rig)
     with pytest.raises(ValueError, match=r"rig.toml: \[rig\] key 'kind'"):
         diagnose(run, tmp_path / "out")
+
+
+def test_one_way_record_is_refused_naming_the_file(results, tmp_path):
+    # with motion one way only, the Coulomb level (times sign v = +1) and the offset are the
+    # same regressor: the baseline cannot be calibrated, so the run is refused, not diagnosed
+    root, _ = results
+    run = tmp_path / "one_way"
+    run.mkdir()
+    (run / "rig.toml").write_text((root / "quiet" / "rig.toml").read_text())
+    data = np.genfromtxt(root / "quiet" / "data.csv", delimiter=",", names=True)
+    names = data.dtype.names
+    if "feed_position" in names:  # the running distance: the same strokes, all forward
+        data["feed_position"] = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(data["feed_position"])))])
+    if "feed_velocity" in names:
+        data["feed_velocity"] = np.abs(data["feed_velocity"])
+    if "feed_acceleration" in names:
+        data["feed_acceleration"] = np.gradient(np.abs(data["feed_velocity"]), data["time"])
+    np.savetxt(run / "data.csv", np.column_stack([data[n] for n in names]), delimiter=",",
+               header=",".join(names), comments="", fmt="%.9g")
+    with pytest.raises(ValueError, match=r"data.csv: the feed moves one way only \(\d+ samples "
+                                         r"forward, 0 backward\)"):
+        diagnose(run, tmp_path / "out")

@@ -6,7 +6,8 @@
    floor from the residual's high-frequency part, whether the gap is significant;
 4. fit every candidate extension on the fit samples and score it on the held-out samples
    (BIC of the held-out residuals: baseline minus candidate); name the best one when the gap
-   exceeds SIGNIFICANT_GAP times the noise floor, the score exceeds SCORE_MIN and that of a law
+   exceeds the noise floor by SIGNIFICANT_ERRORS standard errors of an RMS of white noise over
+   the held-out samples (1 + 3 / sqrt(2 n): 5 % for n = 1600), the score exceeds SCORE_MIN and that of a law
    in foreign terms, and the candidate explains at least EXPLAINED of the gap's excess variance
    over the noise (held out); else ``unknown`` with a sparse-regression law for the residual
    when such a law (or the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of
@@ -30,9 +31,10 @@ from .run_io import MeasuredRun, load_run
 from .signals import derive_motion
 
 FORMAT = "guideway-diagnosis/1"
-SIGNIFICANT_GAP = 1.1  # gap / noise floor above which a gap may be significant
+SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
 SCORE_MIN = 10.0  # held-out BIC improvement a candidate needs to be named
 EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate must explain
+ONE_WAY = 0.02  # least share of the moving samples each direction of motion must have
 LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 UNITS = {"time": "s", "position": "m", "velocity": "m/s", "speed": "m/s", "acceleration": "m/s2",
@@ -96,6 +98,12 @@ def name_effect(run_dir) -> Naming:
     motion = derive_motion(run.time, motion_columns)
     ctx = Context.of(run, motion)
     usable = ~motion.standstill
+    forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
+    if min(forward, backward) < ONE_WAY * usable.sum():
+        raise ValueError(f"{run.path / 'data.csv'}: the feed moves one way only ({forward} samples "
+                         f"forward, {backward} backward): the Coulomb level and the force offset "
+                         f"cannot be told apart; record strokes in both directions (each at least "
+                         f"{ONE_WAY:.0%} of the moving samples)")
     fit_mask, held = locate.split(run.time.size, usable)
     if held.sum() < 20 or fit_mask.sum() < 20:
         raise ValueError(f"{run.path / 'data.csv'}: only {int(usable.sum())} samples with a clear "
@@ -110,7 +118,8 @@ def name_effect(run_dir) -> Naming:
     noise = locate.noise_floor(y, residual, held)
     gap_base = locate.gap(y, baseline.prediction, held)
     white = locate.whiteness(residual, held)
-    significant = bool(gap_base > SIGNIFICANT_GAP * noise)
+    # the RMS of n white-noise samples has a relative standard error of 1 / sqrt(2 n)
+    significant = bool(gap_base > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * held.sum())) * noise)
     where = locate.locate(ctx, residual, usable)
 
     bic_base = _bic(residual, held, baseline.n_parameters)
