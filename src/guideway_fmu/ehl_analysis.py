@@ -62,9 +62,8 @@ import numpy as np
 
 from .ehl_plots import plot_distribution, plot_load_history
 from .physics import checks
-from .physics.ehl import flow_factors
-from .physics.ehl import (EHLConvergenceError, EHLResult, LineContactEHL, pan_hamrock,
-                          solve_steady, solve_transient, solver)
+from .physics.ehl import (EHLConvergenceError, EHLResult, LineContactEHL, flow_factors,
+                          pan_hamrock, solve_steady, solve_transient, solver)
 
 RADIUS = 2.5e-3  # m, default reduced radius of ``ehl``: paper 000's roller on a flat raceway
 TABLE4_ROUGHNESS = 0.45e-6  # m, composite RMS roughness of paper 000 Table 4
@@ -104,8 +103,7 @@ def point_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, 
     three). radius [m] (default RADIUS), e_reduced [Pa], viscosity [Pa s], roughness [m],
     sliding_velocity [m/s] and peklenik (the average flow model's roughness orientation, which
     switches that model on; needs roughness) apply to both; None leaves LineContactEHL's
-    default. Raises
-    ValueError naming the command-line options of a mixed or incomplete set."""
+    default. Raises ValueError naming the command-line options of a mixed or incomplete set."""
     for name, value in locals().copy().items():
         if value is not None and name != "peklenik":
             _POINT_CHECKS[name](_option(name), value)

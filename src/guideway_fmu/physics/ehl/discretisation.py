@@ -5,8 +5,9 @@ Unknowns on a uniform grid X_0..X_{n-1}: hydrodynamic pressure P_i, film H_i, an
 approach H_00. Equations (paper 000 eqs. 15-23):
 
 * Reynolds (eq. 18): d/dX(eps dP/dX) - lam d(rho H)/dX - kappa d(rho H)/dt = 0,
-  eps = rho H^3 / eta (with ``average_flow``: eps = phi_x rho H^3 / eta and H_T, the mean gap,
-  in place of H in the wedge and time terms; see :mod:`.flow_factors`), lam = 12 mu0 u_m R^2 / (b^3 p_H), kappa = 12 mu0 R^2 / (b^2 p_H) [s];
+  eps = rho H^3 / eta, lam = 12 mu0 u_m R^2 / (b^3 p_H), kappa = 12 mu0 R^2 / (b^2 p_H) [s]
+  (with ``average_flow``: eps = phi_x rho H^3 / eta, and the mean gap H_T in place of H in the
+  wedge and time terms; see :mod:`.flow_factors`);
   conservative finite volumes, central Poiseuille flux, second-order upwind wedge flux
   (3 q_i - q_{i-1}) / 2, q = rho H; P = 0 at both ends. Reynolds' exit condition (eq. 21,
   P >= 0 with the film ruptured where P would be negative) by a penalty: the row
