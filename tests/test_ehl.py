@@ -205,6 +205,9 @@ def test_flow_factors_tend_to_the_smooth_film_and_match_numerical_derivatives(ga
     away = np.abs(ratio - lowest) > 2.0 * step
     assert np.allclose(slope[away], numerical[away], rtol=1e-6, atol=1e-9)
     assert np.all(slope[ratio < lowest] == 0.0)  # held at the fit's bound below its range
+    # a gamma given to within rounding (1/3 as 0.3333333) is that table entry, law and all
+    nearby = flow_factors.pressure_flow_factor(ratio, gamma * (1.0 + 1e-7))
+    assert np.array_equal(nearby[0], phi) and np.array_equal(nearby[1], slope)
 
 
 def test_mean_gap_matches_quadrature_over_the_gaussian_heights():
@@ -357,6 +360,8 @@ def test_sudden_load_increase_is_cushioned_by_the_squeeze_film():
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, viscosity=1e-6), "viscosity"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, roughness=1e-8, average_flow=True,
                                      peklenik=2.0), "peklenik"),
+    (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, roughness=1e-8, average_flow=True,
+                                     peklenik="nine"), "peklenik"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, roughness=1e-8, average_flow="yes"),
      "average_flow"),
     (lambda: ehl.solve_dimensionless(1e-4, 1e-11, 4500, nodes=16), "nodes"),

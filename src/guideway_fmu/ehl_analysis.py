@@ -90,7 +90,8 @@ _POINT_CHECKS = {  # checks of ``ehl``'s options (a steady film needs u_m > 0)
     "load": checks.positive, "velocity": checks.positive, "pressure_viscosity": checks.non_negative,
     "W": checks.positive, "U": checks.positive, "G": checks.non_negative,
     "radius": checks.positive, "e_reduced": checks.positive, "viscosity": checks.positive,
-    "roughness": checks.non_negative, "sliding_velocity": checks.finite}
+    "roughness": checks.non_negative, "sliding_velocity": checks.finite,
+    "peklenik": flow_factors.check_peklenik}
 
 
 # --- guideway-fmu ehl ------------------------------------------------------------------------
@@ -105,7 +106,7 @@ def point_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, 
     switches that model on; needs roughness) apply to both; None leaves LineContactEHL's
     default. Raises ValueError naming the command-line options of a mixed or incomplete set."""
     for name, value in locals().copy().items():
-        if value is not None and name != "peklenik":
+        if value is not None:
             _POINT_CHECKS[name](_option(name), value)
     dimensional = {"load": load, "velocity": velocity, "pressure_viscosity": pressure_viscosity}
     groups = {"W": W, "U": U, "G": G}
@@ -124,11 +125,8 @@ def point_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, 
         if not roughness:
             raise ValueError("--peklenik selects the average flow model of rough surfaces; "
                              "give --roughness > 0 with it")
-        try:
-            common["peklenik"] = flow_factors.check_peklenik(peklenik)
-        except ValueError as error:
-            raise ValueError(str(error).replace("LineContactEHL.peklenik", "--peklenik")) from None
-        common["average_flow"] = True
+        common.update(peklenik=flow_factors.check_peklenik("--peklenik", peklenik),
+                      average_flow=True)
     radius = RADIUS if radius is None else radius
     if given_g:
         missing = [_option(k) for k, v in groups.items() if v is None]

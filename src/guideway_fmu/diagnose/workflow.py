@@ -8,8 +8,8 @@
    (BIC of the held-out residuals: baseline minus candidate); name the best one when the gap
    exceeds the noise floor by SIGNIFICANT_ERRORS standard errors of an RMS of white noise over
    the held-out samples (1 + 3 / sqrt(2 n): 5 % for n = 1600), the score exceeds SCORE_MIN and
-   that of a law in foreign terms, and the candidate explains at least EXPLAINED of the gap's excess variance
-   over the noise (held out); else ``unknown`` with a sparse-regression law for the residual
+   that of a law in foreign terms, and the candidate explains at least EXPLAINED of the gap's
+   excess variance over the noise (held out); else ``unknown`` with a sparse-regression law for the residual
    when such a law (or the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of
    it; else ``none``: a gap that neither physics nor a law accounts for is taken as what the
    data cannot resolve (structured noise, such as that of accelerations differenced from

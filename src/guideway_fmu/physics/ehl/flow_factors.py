@@ -25,22 +25,28 @@ PRESSURE_FLOW = {1 / 9: (1.48, 0.42, 1.0), 1 / 6: (1.38, 0.42, 1.0), 1 / 3: (1.1
                  9.0: (0.870, 1.5, 0.5)}
 
 
-def check_peklenik(gamma: float) -> float:
-    """The table key equal to gamma (to 1e-6 relative); ValueError naming the choices."""
+def check_peklenik(name: str, gamma) -> float:
+    """The table key equal to gamma (to 1e-6 relative); ValueError starting with ``name`` and
+    listing the choices for anything else (including non-numbers)."""
+    try:
+        value = float(gamma)
+    except (TypeError, ValueError):
+        value = math.nan
     for key in PRESSURE_FLOW:
-        if math.isclose(gamma, key, rel_tol=1e-6):
+        if math.isclose(value, key, rel_tol=1e-6):
             return key
-    raise ValueError(f"LineContactEHL.peklenik must be one of Patir and Cheng's 1/9, 1/6, 1/3, "
-                     f"1, 3, 6, 9, got {gamma!r}")
+    raise ValueError(f"{name} must be one of Patir and Cheng's 1/9, 1/6, 1/3, 1, 3, 6, 9, "
+                     f"got {gamma!r}")
 
 
 def pressure_flow_factor(ratio, gamma: float = 1.0):
     """(phi_x, d phi_x / d(h/sigma)) at ratio = h / sigma [-]; below the fit's range
     (h / sigma < 0.5 to 1, see PRESSURE_FLOW) phi_x is held at its value on the bound."""
-    c, r, lowest = PRESSURE_FLOW[check_peklenik(gamma)]
+    key = check_peklenik("peklenik", gamma)
+    c, r, lowest = PRESSURE_FLOW[key]
     ratio = np.asarray(ratio, dtype=float)
     held = np.maximum(ratio, lowest)
-    if gamma <= 1.0:
+    if key <= 1.0:
         term = c * np.exp(-r * held)
         phi, slope = 1.0 - term, r * term
     else:

@@ -123,7 +123,7 @@ class LineContactEHL:
         if not isinstance(self.average_flow, bool):
             raise ValueError(f"LineContactEHL.average_flow must be True or False, "
                              f"got {self.average_flow!r}")
-        flow_factors.check_peklenik(self.peklenik)
+        flow_factors.check_peklenik("LineContactEHL.peklenik", self.peklenik)
         # Roelands needs ln(mu0) + 9.67 > 0.
         checks.in_range("LineContactEHL.viscosity", self.viscosity,
                         math.exp(-ROELANDS_LN_VISCOSITY), math.inf)
