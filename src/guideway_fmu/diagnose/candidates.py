@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from ..physics import friction_laws
 from ..physics.friction import CoulombParams, coulomb_friction, regularised_sign
@@ -84,6 +85,7 @@ class Candidate:
     signal = "time"  # the signal its residual shows against (plots)
     fmu_name = "FrictionCoulomb"
     uses_position = False
+    continuous: tuple = ()  # setting keys refined between grid values after the grid search
 
     def settings(self, ctx: Context) -> list[dict]:
         return [{}]
@@ -111,32 +113,61 @@ class Candidate:
             return None
         return {"coulomb": float(level)}, ctx.coulomb_parameters(float(level))
 
-    def fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
-        """Best setting by BIC on the fit samples; None if every setting is unphysical."""
+    def _evaluate(self, ctx: Context, fit_mask: np.ndarray, setting: dict):
+        """(BIC on the fit samples, coefficients, design) of one setting."""
         target = ctx.y - ctx.fixed
+        design = np.column_stack([self.columns(ctx, setting), np.ones_like(target)])
+        rows, rhs = design[fit_mask], target[fit_mask]
+        penalty = self.penalty(rows[:, :-1])
+        if penalty is not None:
+            rows = np.vstack([rows, np.column_stack([penalty, np.zeros(len(penalty))])])
+            rhs = np.concatenate([rhs, np.zeros(len(penalty))])
+        coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         n = int(fit_mask.sum())
+        rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
+        bic = n * np.log(max(rss, 1e-300) / n) + (design.shape[1] + len(setting)) * np.log(n)
+        return bic, coef, design
+
+    def _refine(self, ctx, fit_mask, grid, best):
+        """Each key of ``continuous`` of the best grid setting, in turn, to the BIC minimum on
+        the fit samples between its grid neighbours (bounded Brent search in its logarithm)."""
+        for key in self.continuous:
+            values = sorted({s[key] for s in grid})
+            i = values.index(best[1][key])
+            lo, hi = values[max(i - 1, 0)], values[min(i + 1, len(values) - 1)]
+            if lo == hi:
+                continue
+
+            def bic(log_value, key=key):
+                return self._evaluate(ctx, fit_mask, {**best[1], key: float(np.exp(log_value))})[0]
+
+            found = minimize_scalar(bic, bounds=(np.log(lo), np.log(hi)), method="bounded",
+                                    options={"xatol": 1e-3})
+            setting = {**best[1], key: float(np.exp(found.x))}
+            bic, coef, design = self._evaluate(ctx, fit_mask, setting)
+            phys = self.physical(ctx, setting, coef[:-1]) if bic < best[0] else None
+            if phys is not None:
+                best = (bic, setting, coef, design, phys)
+        return best
+
+    def fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
+        """Best setting by BIC on the fit samples (grid, then ``continuous`` keys refined); None
+        if every setting is unphysical."""
+        grid = self.settings(ctx)
         best = None
-        for setting in self.settings(ctx):
-            design = np.column_stack([self.columns(ctx, setting), np.ones_like(target)])
-            rows, rhs = design[fit_mask], target[fit_mask]
-            penalty = self.penalty(rows[:, :-1])
-            if penalty is not None:
-                rows = np.vstack([rows, np.column_stack([penalty, np.zeros(len(penalty))])])
-                rhs = np.concatenate([rhs, np.zeros(len(penalty))])
-            coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
-            rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
-            k = design.shape[1] + len(setting)
-            bic = n * np.log(max(rss, 1e-300) / n) + k * np.log(n)
+        for setting in grid:
+            bic, coef, design = self._evaluate(ctx, fit_mask, setting)
             if best is not None and bic >= best[0]:
                 continue
             phys = self.physical(ctx, setting, coef[:-1])
             if phys is not None:
-                best = (bic, setting, coef, design, k, phys)
+                best = (bic, setting, coef, design, phys)
         if best is None:
             return None
-        _, setting, coef, design, k, (params, fmu_params) = best
+        _, setting, coef, design, (params, fmu_params) = self._refine(ctx, fit_mask, grid, best)
         params = {**params, **{key: value for key, value in setting.items()},
                   "offset": float(coef[-1])}
+        k = design.shape[1] + len(setting)
         return Fit(self.effect, setting, coef, ctx.fixed + design @ coef, k, params,
                    self.fmu_name, fmu_params, self.rig_mass(ctx, coef), float(coef[-1]),
                    self.uses_position)
@@ -146,6 +177,7 @@ class Lubrication(Candidate):
     """Stribeck + viscous friction; settings: Stribeck velocity, shape and viscous exponents."""
 
     effect, signal, fmu_name = "lubrication", "speed", "FrictionStribeck"
+    continuous = ("stribeck_velocity",)
 
     def settings(self, ctx):
         vmax = float(np.max(np.abs(ctx.motion.v)))
@@ -176,6 +208,7 @@ class PreslidingHysteresis(Candidate):
 
     effect, signal, fmu_name, uses_position = ("presliding_hysteresis", "displacement_since_reversal",
                                                "FrictionDahl", True)
+    continuous = ("presliding_distance", "second_distance")
     _states: tuple = ()
 
     def z_start(self, ctx) -> float:
@@ -199,7 +232,10 @@ class PreslidingHysteresis(Candidate):
             d = self.distances(ctx)
             z = friction_laws.dahl_state(ctx.motion.x, d, self.z_start(ctx))
             self._states = (ctx, {float(v): z[:, i] for i, v in enumerate(d)})
-        return self._states[1][distance]
+        cache = self._states[1]
+        if distance not in cache:  # off the grid (refinement)
+            cache[distance] = friction_laws.dahl_state(ctx.motion.x, distance, self.z_start(ctx))
+        return cache[distance]
 
     def columns(self, ctx, setting):
         first, second = setting["presliding_distance"], setting["second_distance"]
@@ -287,6 +323,7 @@ class PreloadLoss(Candidate):
 
     effect, signal, fmu_name, uses_position = ("preload_loss", "running_distance",
                                                "FrictionPreloadLoss", True)
+    continuous = ("wear_distance",)
 
     def settings(self, ctx):
         total = max(float(ctx.distance[-1]), 1e-9)
