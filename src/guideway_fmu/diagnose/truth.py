@@ -231,7 +231,8 @@ def _plan_motion(mrng, end_time, travel, v_max, a_max) -> _Motion:
     A stroke runs a random fraction of the room left on the rail in its direction, or is a jog of
     0.1 to 1 mm (one in four, or when the room is under 5 mm); strokes cycle through the speed
     levels of v_max [m/s] in a random order, and every speed is lowered where the stroke is too
-    short to reach it at the acceleration a_max [m/s^2].
+    short to reach it at the acceleration a_max [m/s^2]. The first stroke is shortened to end
+    by half the record, so that every record moves both ways.
     """
     segments, strokes = [], []
     t, x, s, direction = 0.0, 0.0, 0.0, 1.0
@@ -247,6 +248,10 @@ def _plan_motion(mrng, end_time, travel, v_max, a_max) -> _Motion:
             level = levels[len(strokes) % len(levels)]
         speed = min(v_max * level, math.sqrt(2.0 * a_max * length / math.pi))
         ramp = 0.5 * math.pi * speed / a_max
+        if not strokes and dwell + ramp + length / speed > 0.5 * end_time:
+            length = max((0.5 * end_time - dwell - ramp) * speed, 1e-4)
+            speed = min(speed, math.sqrt(2.0 * a_max * length / math.pi))
+            ramp = 0.5 * math.pi * speed / a_max
         cruise = length / speed - ramp
         strokes.append((t, direction, x, length, s))
         segments.append((dwell, 0.0, 0.0))
