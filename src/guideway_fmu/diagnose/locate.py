@@ -7,6 +7,7 @@ import numpy as np
 from .signals import noise_rms
 
 BLOCK = 25  # samples per block (at least); every third block is held out
+FOLDS = 3  # cross-validation folds: blocks k, k + 3, ... held out in fold k
 MAX_BLOCKS = 600
 BINS = 20  # quantile bins of the residual-against-signal statistics
 
@@ -16,15 +17,21 @@ def blocks(n: int) -> int:
     return int(np.clip(n // BLOCK, 3, MAX_BLOCKS))
 
 
-def split(n: int, usable: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def split(n: int, usable: np.ndarray, fold: int = 1) -> tuple[np.ndarray, np.ndarray]:
     """(fit, held_out) masks: the record cut into :func:`blocks` equal blocks, every third held
-    out (1/3 of the record, spread over all of it; short blocks, so that a law of a slowly
-    varying signal is tested between the fit samples around it); samples not ``usable`` belong
-    to neither."""
+    out, starting at block ``fold`` (0, 1 or 2; 1/3 of the record, spread over all of it; short
+    blocks, so that a law of a slowly varying signal is tested between the fit samples around
+    it); samples not ``usable`` belong to neither. The three folds hold out every usable sample
+    once."""
     count = blocks(n)
     block = np.minimum(np.arange(n) * count // n, count - 1)
-    held = (block % 3 == 1) & usable
+    held = (block % FOLDS == fold) & usable
     return usable & ~held, held
+
+
+def folds(n: int, usable: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The FOLDS (fit, held_out) splits of :func:`split`, the reported one (fold 1) first."""
+    return [split(n, usable, fold) for fold in (1, 2, 0)]
 
 
 def gap(measured, simulated, mask) -> float:

@@ -98,11 +98,12 @@ def plot_residual(path, signal, name, unit, before, after, mask, effect) -> Path
 
 
 def plot_ranking(path, candidates, gap_before, noise) -> Path:
-    """Held-out score (BIC improvement over the baseline) and gap of every candidate."""
+    """Cross-validated held-out score (BIC improvement over the baseline) and gap of every
+    candidate."""
     names = [c["effect"] for c in candidates]
     fig, axes = plt.subplots(1, 2, figsize=(10, 0.5 * len(names) + 2))
     axes[0].barh(names, [c["score"] for c in candidates])
-    axes[0].set_xlabel("score: held-out BIC of baseline - candidate")
+    axes[0].set_xlabel("score: cross-validated held-out BIC, baseline - candidate")
     axes[0].invert_yaxis()
     axes[1].barh(names, [c["gap_after"] for c in candidates])
     axes[1].axvline(gap_before, color="k", ls="--", label="baseline gap")
@@ -138,7 +139,8 @@ def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> 
              "</head><body>",
              f"<h1>Diagnosis of {html.escape(notes['run'])}</h1>",
              _table(verdict, ["", ""]),
-             "<h2>Candidates (fitted on the fit samples, scored on the held-out samples)</h2>",
+             "<h2>Candidates (scored on held-out samples, cross-validated over 3 folds; "
+             "parameters and held-out gap of fold 1)</h2>",
              _table(candidates, ["effect", "score", "held-out gap", "parameters"])]
     for title, entries in notes["sections"].items():
         parts.append(f"<h2>{html.escape(title)}</h2>")

@@ -5,15 +5,17 @@
 3. locate the gap: residual against motion, reversals, running distance and frequency, the noise
    floor from the residual's high-frequency part, whether the gap is significant;
 4. fit every candidate extension on the fit samples and score it on the held-out samples
-   (BIC of the held-out residuals: baseline minus candidate); name the best one when the gap
-   exceeds the noise floor by SIGNIFICANT_ERRORS standard errors of an RMS of white noise over
-   the held-out samples (1 + 3 / sqrt(2 n): 5 % for n = 1600), the score exceeds SCORE_MIN and
-   that of a law in foreign terms, and the candidate explains at least EXPLAINED of the gap's
-   excess variance over the noise (held out); else ``unknown`` with a sparse-regression law for the residual
-   when such a law (or the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of
-   it; else ``none``: a gap that neither physics nor a law accounts for is taken as what the
-   data cannot resolve (structured noise, such as that of accelerations differenced from
-   encoder counts), which the synthetic null runs show;
+   (BIC of the held-out residuals: baseline minus candidate), cross-validated: the three folds of
+   locate.folds each hold out a third of the blocks, so every usable sample is predicted once by
+   models fitted without it (the reported gaps are those of fold 1). Name the best candidate when
+   the gap exceeds the noise floor by SIGNIFICANT_ERRORS standard errors of an RMS of white noise
+   (1 + 3 / sqrt(2 n): 2.7 % for n = 6000), its score exceeds SCORE_MIN and that of a law in
+   foreign terms, and it explains at least EXPLAINED of the gap's excess variance over the
+   noise; else ``unknown`` with a sparse-regression law for the residual when such a law (or
+   the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap
+   exceeds UNRESOLVED noise floors; else ``none``: a small gap that neither physics nor a law
+   accounts for is taken as what the data cannot resolve (errors of the measured inputs, such
+   as accelerations differenced from encoder counts), which the synthetic null runs show;
 5. write the baseline and augmented scenarios, co-simulate them through the FMUs and report the
    held-out gaps of the co-simulations; write diagnosis.json, fit.csv, plots and report.html.
 """
@@ -36,6 +38,11 @@ SCORE_MIN = 10.0  # held-out BIC improvement a candidate needs to be named
 EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate must explain
 ONE_WAY = 0.02  # least share of the moving samples each direction of motion must have
 LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
+#: a significant gap no candidate or law explains is ``unknown`` above this many noise floors,
+#: else ``none``: below it, it is what errors of the measured inputs alone produce (the true model
+#: fed the recorded motion of synthetic null runs misses by 1.2-1.4 noise floors at 0.5 % noise:
+#: accelerations differenced from encoder counts)
+UNRESOLVED = 2.0
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 UNITS = {"time": "s", "position": "m", "velocity": "m/s", "speed": "m/s", "acceleration": "m/s2",
          "time_since_reversal": "s", "displacement_since_reversal": "m", "running_distance": "m"}
@@ -70,10 +77,11 @@ class Naming:
     baseline: Fit
     noise: float
     gap_base: float
+    cross_gap: float  # cross-validated baseline gap over the noise floor, all usable samples
     white: float
     significant: bool
     where: dict
-    ranked: list  # (held-out score, Fit, held-out gap), best first
+    ranked: list  # (cross-validated score, Fit on the fold-1 fit samples, held-out gap), best first
     foreign_score: float
     effect: str
     winner: Fit | None
@@ -104,59 +112,82 @@ def name_effect(run_dir) -> Naming:
                          f"forward, {backward} backward): the Coulomb level and the force offset "
                          f"cannot be told apart; record strokes in both directions (each at least "
                          f"{ONE_WAY:.0%} of the moving samples)")
-    fit_mask, held = locate.split(run.time.size, usable)
+    splits = locate.folds(run.time.size, usable)
+    fit_mask, held = splits[0]
     if held.sum() < 20 or fit_mask.sum() < 20:
         raise ValueError(f"{run.path / 'data.csv'}: only {int(usable.sum())} samples with a clear "
                          f"direction of motion; at least 60 are needed")
 
-    baseline = BASELINE.fit(ctx, fit_mask)
-    if baseline is None:
-        raise ValueError(f"{run.path / 'data.csv'}: column '{run.channel}': the Coulomb level "
-                         f"fits negative; {run.channel} must be positive along the motion")
-    y = ctx.y
+    def calibrated(mask):
+        fitted = BASELINE.fit(ctx, mask)
+        if fitted is None:
+            raise ValueError(f"{run.path / 'data.csv'}: column '{run.channel}': the Coulomb level "
+                             f"fits negative; {run.channel} must be positive along the motion")
+        return fitted
+
+    def out_of_fold(predictions):  # each usable sample from the model fitted without it
+        pooled = np.zeros_like(y)
+        for (_, h), prediction in zip(splits, predictions):
+            pooled[h] = prediction[h]
+        return pooled
+
+    bases = [calibrated(f) for f, _ in splits]
+    baseline, y = bases[0], ctx.y
     residual = y - baseline.prediction
     noise = locate.noise_floor(y, residual, held)
     gap_base = locate.gap(y, baseline.prediction, held)
     white = locate.whiteness(residual, held)
-    # the RMS of n white-noise samples has a relative standard error of 1 / sqrt(2 n)
-    significant = bool(gap_base > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * held.sum())) * noise)
     where = locate.locate(ctx, residual, usable)
 
-    bic_base = _bic(residual, held, baseline.n_parameters)
-    fits = [f for f in (c.fit(ctx, fit_mask) for c in candidates_for(run)) if f is not None]
-    ranked = []
-    for f in fits:
-        score = bic_base - _bic(y - f.prediction, held, f.n_parameters)
-        ranked.append((score, f, locate.gap(y, f.prediction, held)))
+    # the decision: cross-validated over the folds (every usable sample held out once)
+    base_cv = out_of_fold([b.prediction for b in bases])
+    noise_cv = locate.noise_floor(y, residual, usable)
+    gap_cv = locate.gap(y, base_cv, usable)
+    # the RMS of n white-noise samples has a relative standard error of 1 / sqrt(2 n)
+    significant = bool(gap_cv > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * usable.sum())) * noise_cv)
+    bic_base = _bic(y - base_cv, usable, baseline.n_parameters)
+    ranked, cv_gaps = [], {}
+    for candidate in candidates_for(run):
+        fitted = [candidate.fit(ctx, f) for f, _ in splits]
+        if any(f is None for f in fitted):
+            continue
+        prediction = out_of_fold([f.prediction for f in fitted])
+        score = bic_base - _bic(y - prediction, usable, fitted[0].n_parameters)
+        ranked.append((score, fitted[0], locate.gap(y, fitted[0].prediction, held)))
+        cv_gaps[candidate.effect] = locate.gap(y, prediction, usable)
     ranked.sort(key=lambda item: -item[0])
 
-    def share(gap_model):  # of the gap's excess variance over the noise, held out
-        return (gap_base**2 - gap_model**2) / max(gap_base**2 - noise**2, 1e-300)
+    def share(gap_model):  # of the gap's excess variance over the noise, cross-validated
+        return (gap_cv**2 - gap_model**2) / max(gap_cv**2 - noise_cv**2, 1e-300)
+
+    def law(foreign):  # (fold-1 law, its cross-validated score and share of the gap)
+        laws = [regression.propose(ctx, y - b.prediction, f, where["frequencies"], foreign=foreign)
+                for b, (f, _) in zip(bases, splits)]
+        prediction = out_of_fold([b.prediction + values for b, (_, values, _) in zip(bases, laws)])
+        terms = max(n for _, _, n in laws)
+        score = bic_base - _bic(y - prediction, usable, baseline.n_parameters + terms)
+        return laws[0], score, share(locate.gap(y, prediction, usable))
 
     # a law from signals no candidate uses (normal force, residual peak frequencies) competes
-    _, foreign, n_foreign = regression.propose(ctx, residual, fit_mask, where["frequencies"],
-                                               foreign=True)
-    foreign_score = bic_base - _bic(residual - foreign, held, baseline.n_parameters + n_foreign)
-    effect, winner, equation, law = "none", None, None, None
+    _, foreign_score, foreign_share = law(foreign=True)
+    effect, winner, equation, values = "none", None, None, None
     if significant:
-        score, best, gap_best = ranked[0] if ranked else (-np.inf, None, gap_base)
-        if score > SCORE_MIN and share(gap_best) >= EXPLAINED and score > foreign_score:
+        score, best, _ = ranked[0] if ranked else (-np.inf, None, gap_base)
+        if (score > SCORE_MIN and share(cv_gaps[best.effect]) >= EXPLAINED
+                and score > foreign_score):
             effect, winner = best.effect, best
         else:
-            equation, law, n_law = regression.propose(ctx, residual, fit_mask, where["frequencies"])
-            law_score = bic_base - _bic(residual - law, held, baseline.n_parameters + n_law)
-            explains = (law_score > SCORE_MIN
-                        and share(locate.gap(y, baseline.prediction + law, held)) >= LAW_EXPLAINED)
-            foreign_explains = (foreign_score > SCORE_MIN and share(
-                locate.gap(y, baseline.prediction + foreign, held)) >= LAW_EXPLAINED)
-            if explains or foreign_explains:
+            (equation, values, _), law_score, law_share = law(foreign=False)
+            explains = law_score > SCORE_MIN and law_share >= LAW_EXPLAINED
+            foreign_explains = foreign_score > SCORE_MIN and foreign_share >= LAW_EXPLAINED
+            if explains or foreign_explains or gap_cv > UNRESOLVED * noise_cv:
                 effect = "unknown"
-            else:  # structure no model or law accounts for: within what the data can resolve
-                equation, law = None, None
+            else:  # small structure no model or law accounts for: the inputs' own errors
+                equation, values = None, None
     scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
-    return Naming(run, ctx, fit_mask, held, usable, baseline, noise, gap_base, white, significant,
-                  where, ranked, foreign_score, effect, winner, equation, law,
-                  _confidence(scores, effect))
+    return Naming(run, ctx, fit_mask, held, usable, baseline, noise, gap_base, gap_cv / noise_cv,
+                  white, significant, where, ranked, foreign_score, effect, winner, equation,
+                  values, _confidence(scores, effect))
 
 
 def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
@@ -221,7 +252,7 @@ def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
                     "held-out samples (gap, fit.csv)": int(held.sum()),
                     "left out of fit and gap (standstill, ambiguous direction)": int((~usable).sum()),
                     "split": f"{locate.blocks(run.time.size)} equal blocks of the record, every third "
-                             f"held out"},
+                             f"held out; scores cross-validated over the {locate.FOLDS} such folds"},
         "Motion driving the model": motion.how,
         "Gap and noise": {
             "baseline gap (vectorised fit)": f"{nm.gap_base:.6g}",
@@ -229,6 +260,7 @@ def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
                            "(1.4826 MAD / sqrt 6), over the held-out range of the channel",
             "residual autocorrelation (lags 1-5)": f"{nm.white:.4g} "
                                                    f"(noise alone: ~ {1 / np.sqrt(held.sum()):.2g})",
+            "cross-validated baseline gap / noise floor (all usable samples)": f"{nm.cross_gap:.4g}",
             "significant": str(nm.significant),
             "residual peaks [Hz]": ", ".join(f"{f:.4g}" for f in where["frequencies"]) or "-"},
         "Share of the baseline residual explained by bins of": {

@@ -1,0 +1,73 @@
+"""The naming decision's parts on synthetic runs, without co-simulation: the cross-validation
+folds, the refinement of a candidate's continuous setting, and the answer for a large gap that
+nothing explains."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.signal import butter, sosfiltfilt
+
+from guideway_fmu.diagnose import locate, truth, workflow
+from guideway_fmu.diagnose.candidates import Context, PreloadLoss
+from guideway_fmu.diagnose.run_io import load_run
+from guideway_fmu.diagnose.signals import derive_motion
+
+
+def test_folds_hold_out_every_usable_sample_exactly_once():
+    usable = np.random.default_rng(0).random(5000) > 0.2
+    splits = locate.folds(usable.size, usable)
+    held = np.sum([h for _, h in splits], axis=0)
+    assert np.array_equal(held, usable.astype(int))
+    for fit, h in splits:
+        assert not np.any(fit & h) and np.array_equal(fit | h, usable)
+        assert 0.3 < h.sum() / usable.sum() < 0.37
+    assert all(np.array_equal(a, b) for a, b in zip(splits[0], locate.split(usable.size, usable)))
+
+
+def test_preload_wear_distance_between_grid_values_matches_truth_noise_free(tmp_path):
+    # noise-free, unquantised run: the exponential loss is the candidate's own law, so the
+    # refined wear distance must land on the true decay distance (limiting case) although it
+    # lies between the grid values (the grid steps by a factor 10^0.25 = 1.78)
+    run = truth.simulate("preload_loss", np.random.default_rng(5000), noise=0.0, encoder_step=0.0,
+                         n_samples=4000)
+    truth.write_run(tmp_path / "run", run)
+    measured = load_run(tmp_path / "run")
+    motion = derive_motion(measured.time, {c: measured.columns[c] for c in
+                                           ("feed_position", "feed_velocity", "feed_acceleration")})
+    ctx = Context.of(measured, motion)
+    candidate = PreloadLoss()
+    grid = np.array([s["wear_distance"] for s in candidate.settings(ctx)])
+    true = run.info.parameters["decay_distance"]
+    off_grid = np.min(np.abs(np.log(grid / true)))
+    assert off_grid > 0.05  # the nearest grid value is at least 5 % off
+    fitted = candidate.fit(ctx, ~motion.standstill)
+    # what remains: the rig's velocity by centred differences and the regularised sign's width
+    error = abs(np.log(fitted.setting["wear_distance"] / true))
+    assert error < 0.03 and error < off_grid / 5
+    assert fitted.parameters["loss"] == pytest.approx(run.info.parameters["loss_fraction"], rel=0.01)
+
+
+@pytest.fixture(scope="module")
+def band_noise_run(tmp_path_factory):
+    # a null run plus band-limited random force (20-100 Hz, 3x the white noise): its second
+    # differences are small (the noise floor hardly sees it), no candidate and no sparse law
+    # describes it, and the gap is about 3 noise floors
+    run = truth.simulate("none", np.random.default_rng(14), noise=0.01, n_samples=3000)
+    band = sosfiltfilt(butter(4, [20, 100], btype="bandpass", fs=1000, output="sos"),
+                       np.random.default_rng(1).standard_normal(run.info.n_samples))
+    run.columns["drive_force"] = run.columns["drive_force"] + band * 3 * run.info.noise_rms / band.std()
+    return truth.write_run(tmp_path_factory.mktemp("band") / "run", run)
+
+
+def test_large_gap_nothing_explains_is_unknown_with_a_law(band_noise_run):
+    named = workflow.name_effect(band_noise_run)
+    assert named.cross_gap > workflow.UNRESOLVED
+    assert named.effect == "unknown" and named.equation
+    assert all(score < workflow.SCORE_MIN for score, _, _ in named.ranked)
+
+
+def test_unresolved_threshold_decides_that_answer(band_noise_run, monkeypatch):
+    # the same run with the threshold out of reach: the small-gap rule answers none, so the
+    # answer above comes from the gap's size, not from a law that explains it
+    monkeypatch.setattr(workflow, "UNRESOLVED", np.inf)
+    assert workflow.name_effect(band_noise_run).effect == "none"
