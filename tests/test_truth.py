@@ -322,3 +322,13 @@ def test_make_suite_refuses_bad_effects_and_seeds(tmp_path):
         truth.make_suite(tmp_path, [1], effects=("none", "wear"))
     with pytest.raises(ValueError, match="^seeds "):
         truth.make_suite(tmp_path, [-1])
+
+
+def test_first_stroke_ends_by_half_the_record_so_every_record_moves_both_ways():
+    # 2 s records: a slow first stroke (top speed a tenth of 0.1-0.3 m/s over up to 0.1 m) would
+    # fill them; the rule shortens it, and the return stroke starts after at most one dwell
+    for seed in range(40):
+        run = truth.simulate("none", np.random.default_rng(seed), n_samples=2000)
+        t, v = run.truth["time"], run.truth["velocity"]
+        assert np.any(v < -truth.MOVING_SPEED)
+        assert t[np.argmax(v < 0)] < 0.5 * t[-1] + 0.25
