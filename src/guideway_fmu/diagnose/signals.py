@@ -6,6 +6,9 @@ median sampling interval (uneven records are interpolated onto it and back). A m
 is smoothed with the same filter only when its own noise (robust second-difference estimate)
 exceeds 1e-4 of its range. The window spans about 1/40 of the median time between velocity
 reversals, 5 to 51 samples, shorter where the motion has faster content (:func:`_window`).
+The acceleration is then scaled by its least-squares gain against a short-window derivative of
+the position (:func:`_acceleration_gain`), which undoes on average how differencing and
+smoothing lower short acceleration pulses.
 """
 from __future__ import annotations
 
@@ -17,6 +20,7 @@ from scipy.signal import savgol_filter
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
 STANDSTILL = 0.01  # |v| below this fraction of max |v|: direction of motion ambiguous
+SHORT = 7  # samples of the cubic filter giving the unbiased acceleration the gain refers to
 
 
 def noise_rms(y) -> float:
@@ -68,11 +72,13 @@ class _Grid:
         self.step = float(np.median(np.diff(time)))
         self.uniform = np.ptp(np.diff(time)) <= 1e-6 * self.step
         self.grid = time if self.uniform else np.arange(time[0], time[-1] + 0.5 * self.step, self.step)
-        self.window = int(min(window, self.grid.size - (1 - self.grid.size % 2)))
+        self.longest = int(self.grid.size - (1 - self.grid.size % 2))  # odd, within the grid
+        self.window = min(int(window), self.longest)
 
-    def filter(self, y, deriv=0):
+    def filter(self, y, deriv=0, window=None):
         on_grid = y if self.uniform else np.interp(self.grid, self.time, y)
-        out = savgol_filter(on_grid, self.window, 3, deriv=deriv, delta=self.step, mode="interp")
+        window = self.window if window is None else min(window, self.longest)
+        out = savgol_filter(on_grid, window, 3, deriv=deriv, delta=self.step, mode="interp")
         return out if self.uniform else np.interp(self.time, self.grid, out)
 
 
@@ -92,6 +98,20 @@ def _window(time, velocity_like) -> int:
         half = (4.0 / min(3.0 * highest, 1.0) + 4.6) / 3.2
         per_stroke = min(per_stroke, 80 * half)
     return int(np.clip(2 * (per_stroke // 80) + 1, 5, 51))
+
+
+def _acceleration_gain(grid: _Grid, columns: dict, a) -> float:
+    """Least-squares gain [-] of an unbiased acceleration on ``a`` [m/s^2]: the second derivative
+    of the position (first of the velocity where no position is recorded) by a cubic filter over
+    only SHORT samples, exact for cubic motion. Differencing and smoothing spread and lower short
+    acceleration pulses (a ramp of a few ms); their least-squares scale then errs by several per
+    cent, which a mass term would take up. The short filter's noise averages out in the gain."""
+    if "feed_position" in columns:
+        short = grid.filter(columns["feed_position"], deriv=2, window=SHORT)
+    else:
+        short = grid.filter(columns["feed_velocity"], deriv=1, window=SHORT)
+    power = float(np.dot(a, a))
+    return float(np.dot(short, a) / power) if power > 0.0 else 1.0
 
 
 def derive_motion(time, columns: dict) -> Motion:
@@ -134,6 +154,11 @@ def derive_motion(time, columns: dict) -> Motion:
     else:
         a = grid.filter(columns["feed_position"], deriv=2)
         how["feed_acceleration"] = f"derived from feed_position: second derivative, {filt}"
+    gain = _acceleration_gain(grid, columns, a)
+    a = gain * a
+    how["feed_acceleration"] += (f"; scaled by {gain:.4g}, the least-squares gain of the "
+                                 f"{SHORT}-sample second derivative of feed_position (first of "
+                                 f"feed_velocity without it) on it")
     limit = STANDSTILL * np.max(np.abs(v))
     standstill = np.abs(v) <= limit
     how["standstill"] = f"|feed_velocity| <= {limit:.4g} m/s ({STANDSTILL:.0%} of its maximum)"
