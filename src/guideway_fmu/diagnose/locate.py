@@ -31,7 +31,7 @@ def split(n: int, usable: np.ndarray, fold: int = 1) -> tuple[np.ndarray, np.nda
 
 def folds(n: int, usable: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     """The FOLDS (fit, held_out) splits of :func:`split`, the reported one (fold 1) first."""
-    return [split(n, usable, fold) for fold in (1, 2, 0)]
+    return [split(n, usable, (1 + k) % FOLDS) for k in range(FOLDS)]
 
 
 def gap(measured, simulated, mask) -> float:

@@ -118,6 +118,8 @@ def name_effect(run_dir) -> Naming:
         raise ValueError(f"{run.path / 'data.csv'}: only {int(usable.sum())} samples with a clear "
                          f"direction of motion; at least 60 are needed")
 
+    y = ctx.y
+
     def calibrated(mask):
         fitted = BASELINE.fit(ctx, mask)
         if fitted is None:
@@ -132,7 +134,7 @@ def name_effect(run_dir) -> Naming:
         return pooled
 
     bases = [calibrated(f) for f, _ in splits]
-    baseline, y = bases[0], ctx.y
+    baseline = bases[0]
     residual = y - baseline.prediction
     noise = locate.noise_floor(y, residual, held)
     gap_base = locate.gap(y, baseline.prediction, held)
