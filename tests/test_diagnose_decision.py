@@ -10,7 +10,6 @@ from scipy.signal import butter, sosfiltfilt
 from guideway_fmu.diagnose import locate, truth, workflow
 from guideway_fmu.diagnose.candidates import Context, PreloadLoss
 from guideway_fmu.diagnose.run_io import load_run
-from guideway_fmu.diagnose.signals import derive_motion
 
 
 def test_folds_hold_out_every_usable_sample_exactly_once():
@@ -32,8 +31,7 @@ def test_preload_wear_distance_between_grid_values_matches_truth_noise_free(tmp_
                          n_samples=4000)
     truth.write_run(tmp_path / "run", run)
     measured = load_run(tmp_path / "run")
-    motion = derive_motion(measured.time, {c: measured.columns[c] for c in
-                                           ("feed_position", "feed_velocity", "feed_acceleration")})
+    motion = workflow.motion_of(measured)
     ctx = Context.of(measured, motion)
     candidate = PreloadLoss()
     grid = np.array([s["wear_distance"] for s in candidate.settings(ctx)])

@@ -1,46 +1,70 @@
 """The feed motion that drives the model, from the measured channels, and where it reverses.
 
 Position, velocity and acceleration come from the channels where measured; what is missing is
-derived with a Savitzky-Golay filter (cubic, zero phase: no delay) on a uniform grid at the
-median sampling interval (uneven records are interpolated onto it and back). A measured channel
-is smoothed with the same filter only when its own noise (robust second-difference estimate)
-exceeds 1e-4 of its range. The window spans about 1/40 of the median time between velocity
-reversals, 5 to 51 samples, shorter where the motion has faster content (:func:`_window`).
-The acceleration is then scaled by its least-squares gain against a short-window derivative of
-the position (:func:`_acceleration_gain`), which undoes on average how differencing and
-smoothing lower short acceleration pulses.
+derived with a Savitzky-Golay filter (zero phase: no delay) on a uniform grid at the median
+sampling interval (uneven records are interpolated onto it and back by cubic splines). A
+measured channel is smoothed with the cubic filter only when its own noise (robust
+second-difference estimate) exceeds 1e-4 of its range. The cubic window spans about 1/40 of the
+median time between velocity reversals, 5 to 51 samples, shorter where the motion has faster
+content (:func:`_window`).
+
+Where the position is recorded and the model states how much acceleration noise it can take
+(the workflow: a share of the force noise over the moving mass, since the acceleration enters
+as m a), the acceleration is the position's second derivative by a filter of polynomial order
+ORDER over the shortest window whose noise, the position's noise (an encoder's rounding)
+through the filter, stays within that (:func:`_acceleration_from_position`). A recorded
+acceleration channel is not used then: rigs difference it from the same encoder with a
+smoothing of their own, which lowers short ramps. Otherwise the acceleration comes from the
+recorded acceleration, the velocity's or the position's derivative by the cubic filter, scaled
+by its least-squares gain against a short-window derivative of the position (or velocity)
+(:func:`_acceleration_gain`), which undoes on average how differencing and smoothing lower
+short acceleration pulses.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+from math import comb
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
-from scipy.signal import savgol_filter
+from scipy.interpolate import CubicSpline
+from scipy.signal import savgol_coeffs, savgol_filter
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
 STANDSTILL = 0.01  # |v| below this fraction of max |v|: direction of motion ambiguous
 SHORT = 7  # samples of the cubic filter giving the unbiased acceleration the gain refers to
+ORDER = 7  # polynomial order of the filter that differentiates the position twice
+#: longest window of that filter: scipy's coefficients of order 7 lose their precision beyond
+#: about 150 samples (their sum is 0.002 instead of 0 at 101 samples, 1800 at 201)
+LONGEST = 101
+NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
 
 
-def noise_rms(y) -> float:
-    """RMS of white noise in y, from the MAD of its second differences (robust to steps)."""
-    d2 = np.diff(np.asarray(y, dtype=float), 2)
-    return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0))
+def noise_rms(y, order: int = 2) -> float:
+    """RMS of white noise in y, from the MAD of its differences of ``order`` (robust to steps;
+    white noise of RMS s gives them the RMS s sqrt(binomial(2 order, order)); a higher order
+    sees less of a smooth signal's curvature)."""
+    d = np.diff(np.asarray(y, dtype=float), order)
+    return float(1.4826 * np.median(np.abs(d - np.median(d))) / np.sqrt(comb(2 * order, order)))
 
 
-def channel_noise(y) -> float:
-    """RMS noise of a measured channel: :func:`noise_rms`, but at least the rounding noise
-    q / sqrt(12) of a channel whose values lie on a lattice of step q (an encoder count, or a
-    difference of counts), where most second differences are 0 and their MAD says nothing."""
+def rounding_noise(y) -> float:
+    """Rounding noise q / sqrt(12) of a channel whose values lie on a lattice of step q (an
+    encoder count, or a difference of counts), else 0."""
     y = np.asarray(y, dtype=float)
     steps = np.abs(np.diff(y))
     steps = steps[steps > 1e-9 * max(float(np.max(np.abs(y))), 1e-300)]
     if steps.size == 0:
-        return noise_rms(y)
+        return 0.0
     q = float(np.min(steps))
     on_lattice = np.mean(np.abs(steps / q - np.round(steps / q)) < 1e-3) > 0.99
-    return max(noise_rms(y), q / np.sqrt(12.0) if on_lattice else 0.0)
+    return q / np.sqrt(12.0) if on_lattice else 0.0
+
+
+def channel_noise(y, order: int = 2) -> float:
+    """RMS noise of a measured channel: :func:`noise_rms` (of ``order``), but at least its
+    :func:`rounding_noise`, where most differences are 0 and their MAD says nothing."""
+    return max(noise_rms(y, order), rounding_noise(y))
 
 
 @dataclass
@@ -75,11 +99,15 @@ class _Grid:
         self.longest = int(self.grid.size - (1 - self.grid.size % 2))  # odd, within the grid
         self.window = min(int(window), self.longest)
 
-    def filter(self, y, deriv=0, window=None):
-        on_grid = y if self.uniform else np.interp(self.grid, self.time, y)
+    def on_grid(self, y):
+        """``y`` at the grid times (cubic-spline interpolation of an uneven record)."""
+        return y if self.uniform else CubicSpline(self.time, y)(self.grid)
+
+    def filter(self, y, deriv=0, window=None, order=3):
         window = self.window if window is None else min(window, self.longest)
-        out = savgol_filter(on_grid, window, 3, deriv=deriv, delta=self.step, mode="interp")
-        return out if self.uniform else np.interp(self.time, self.grid, out)
+        out = savgol_filter(self.on_grid(y), window, order, deriv=deriv, delta=self.step,
+                            mode="interp")
+        return out if self.uniform else CubicSpline(self.grid, out)(self.time)
 
 
 def _window(time, velocity_like) -> int:
@@ -114,8 +142,42 @@ def _acceleration_gain(grid: _Grid, columns: dict, a) -> float:
     return float(np.dot(short, a) / power) if power > 0.0 else 1.0
 
 
-def derive_motion(time, columns: dict) -> Motion:
-    """Motion from the measured ``feed_position`` / ``feed_velocity`` / ``feed_acceleration``."""
+def _acceleration_from_position(grid: _Grid, position, tolerance, per_stroke) -> tuple:
+    """(acceleration [m/s^2], window [samples]): the second derivative of ``position`` [m] by the
+    ORDER filter over the shortest odd window whose output noise, the position's noise times
+    the norm of the filter's coefficients, is at most ``tolerance`` [m/s^2] (the least bias the
+    noise allows; at least NEGLIGIBLE of the acceleration's range, which matters where the force
+    is noise-free), over at most a quarter of ``per_stroke``, the median samples between
+    reversals, and at most LONGEST samples. The position's noise is the rounding noise of recorded values on a lattice (an
+    encoder's counts; the MAD of their differences is biased by the lattice, and after
+    interpolating an uneven record onto the grid misses the rounding errors it averages), else
+    that of its fourth differences on the grid (a smooth motion's curvature hardly shows in
+    them)."""
+    on_grid = grid.on_grid(position)
+    longest = min(grid.longest, LONGEST, max(2 * int(per_stroke // 8) + 1, ORDER + 2))
+    window = longest
+    sigma = rounding_noise(position) or noise_rms(on_grid, order=4)
+    smooth = savgol_filter(on_grid, longest, ORDER, deriv=2, delta=grid.step, mode="interp")
+    allowed = max(tolerance, NEGLIGIBLE * float(np.ptp(smooth)))
+    for w in range(ORDER + 2, longest, 2):
+        h = savgol_coeffs(w, ORDER, deriv=2, delta=grid.step)
+        if sigma * float(np.linalg.norm(h)) <= allowed:
+            window = w
+            break
+    a = grid.filter(position, deriv=2, window=window, order=ORDER)
+    # within half a window of the ends the filter extrapolates its polynomial, which at ORDER
+    # amplifies the noise many times: the cubic fit over the same window takes over there
+    reach = (window // 2) * grid.step
+    edges = (grid.time < grid.time[0] + reach) | (grid.time > grid.time[-1] - reach)
+    a[edges] = grid.filter(position, deriv=2, window=window)[edges]
+    return a, window
+
+
+def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Motion:
+    """Motion from the measured ``feed_position`` / ``feed_velocity`` / ``feed_acceleration``;
+    ``acceleration_noise`` [m/s^2]: the noise RMS the acceleration may carry where it is derived
+    from the position (None: the model sets no limit; the acceleration then comes as without
+    the position, or from the position by the cubic filter, scaled by its gain)."""
     time = np.asarray(time, dtype=float)
     how = {}
     if "feed_velocity" in columns:
@@ -126,7 +188,7 @@ def derive_motion(time, columns: dict) -> Motion:
     grid = _Grid(time, _window(time, coarse))
     filt = (f"Savitzky-Golay, cubic, {grid.window} samples ({grid.window * grid.step:.4g} s), "
             f"zero phase (no delay)" + ("" if grid.uniform else ", on a uniform grid at the "
-                                        "median step, interpolated back"))
+                                        "median step, cubic splines there and back"))
 
     def measured(name):
         y = columns[name]
@@ -146,23 +208,35 @@ def derive_motion(time, columns: dict) -> Motion:
     else:
         x = cumulative_trapezoid(v, time, initial=0.0)
         how["feed_position"] = "integrated from feed_velocity (trapezoid rule, x = 0 at the start)"
-    if "feed_acceleration" in columns:
-        a = measured("feed_acceleration")
-    elif "feed_velocity" in columns:
-        a = grid.filter(v, deriv=1)
-        how["feed_acceleration"] = f"derived from feed_velocity: first derivative, {filt}"
-    else:
-        a = grid.filter(columns["feed_position"], deriv=2)
-        how["feed_acceleration"] = f"derived from feed_position: second derivative, {filt}"
-    gain = _acceleration_gain(grid, columns, a)
-    a = gain * a
-    how["feed_acceleration"] += (f"; scaled by {gain:.4g}, the least-squares gain of the "
-                                 f"{SHORT}-sample second derivative of feed_position (first of "
-                                 f"feed_velocity without it) on it")
     limit = STANDSTILL * np.max(np.abs(v))
     standstill = np.abs(v) <= limit
     how["standstill"] = f"|feed_velocity| <= {limit:.4g} m/s ({STANDSTILL:.0%} of its maximum)"
     moving = np.flatnonzero(~standstill)
     signs = np.sign(v[moving])
     reversals = moving[1:][signs[1:] != signs[:-1]]
+    if "feed_position" in columns and acceleration_noise is not None:
+        per_stroke = np.median(np.diff(reversals)) if reversals.size > 2 else time.size
+        a, window = _acceleration_from_position(grid, columns["feed_position"],
+                                                acceleration_noise, per_stroke)
+        how["feed_acceleration"] = (
+            f"derived from feed_position: second derivative, Savitzky-Golay of order {ORDER}, "
+            f"{window} samples ({window * grid.step:.4g} s), zero phase, the shortest window "
+            f"whose rounding noise stays within {acceleration_noise:.4g} m/s2 RMS (at most a "
+            f"quarter of a stroke)" + ("" if "feed_acceleration" not in columns else
+                                     "; the recorded feed_acceleration is not used (differenced "
+                                     "and smoothed by the rig)"))
+    else:
+        if "feed_acceleration" in columns:
+            a = measured("feed_acceleration")
+        elif "feed_velocity" in columns:
+            a = grid.filter(v, deriv=1)
+            how["feed_acceleration"] = f"derived from feed_velocity: first derivative, {filt}"
+        else:
+            a = grid.filter(columns["feed_position"], deriv=2)
+            how["feed_acceleration"] = f"derived from feed_position: second derivative, {filt}"
+        gain = _acceleration_gain(grid, columns, a)
+        a = gain * a
+        how["feed_acceleration"] += (f"; scaled by {gain:.4g}, the least-squares gain of the "
+                                     f"{SHORT}-sample second derivative of feed_position (first "
+                                     f"of feed_velocity without it) on it")
     return Motion(time, x, v, a, standstill, reversals, how)

@@ -30,7 +30,7 @@ import numpy as np
 from . import locate, regression, report, scenario
 from .candidates import BASELINE, Context, Fit, candidates_for
 from .run_io import MeasuredRun, load_run
-from .signals import derive_motion
+from .signals import derive_motion, noise_rms
 
 FORMAT = "guideway-diagnosis/1"
 SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
@@ -43,6 +43,10 @@ LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms
 #: fed the recorded motion of synthetic null runs misses by 1.2-1.4 noise floors at 0.5 % noise:
 #: accelerations differenced from encoder counts)
 UNRESOLVED = 2.0
+#: the acceleration derived from the position may carry this share of the force channel's noise
+#: (over the moving mass): its error enters the model as m a, and 0.3 adds 4 % to the noise in
+#: quadrature while the shortest such window keeps the filter's bias on short ramps small
+INPUT_SHARE = 0.3
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 UNITS = {"time": "s", "position": "m", "velocity": "m/s", "speed": "m/s", "acceleration": "m/s2",
          "time_since_reversal": "s", "displacement_since_reversal": "m", "running_distance": "m"}
@@ -90,6 +94,17 @@ class Naming:
     confidence: float
 
 
+def motion_of(run: MeasuredRun):
+    """The feed motion of ``run`` (signals.derive_motion), the acceleration allowed INPUT_SHARE
+    of the force channel's noise over the moving mass where the model has a mass term."""
+    columns = {c: run.columns[c] for c in MOTION_CHANNELS
+               if c in run.inputs or (c == "feed_acceleration" and c in run.columns)}
+    mass_term = run.channel == "drive_force" and run.moving_mass > 0.0
+    tolerance = (INPUT_SHARE * noise_rms(run.columns[run.channel]) / run.moving_mass
+                 if mass_term else None)
+    return derive_motion(run.time, columns, tolerance)
+
+
 def name_effect(run_dir) -> Naming:
     """Load, calibrate, locate and name (steps 1-4) without co-simulating; raises as
     :func:`diagnose`."""
@@ -101,9 +116,7 @@ def name_effect(run_dir) -> Naming:
     if run.model["friction"] != "coulomb":
         raise ValueError(f"{source}: [model] key 'friction': diagnose calibrates a 'coulomb' "
                          f"baseline; {run.model['friction']!r} is not supported as a baseline yet")
-    motion_columns = {c: run.columns[c] for c in MOTION_CHANNELS
-                      if c in run.inputs or (c == "feed_acceleration" and c in run.columns)}
-    motion = derive_motion(run.time, motion_columns)
+    motion = motion_of(run)
     ctx = Context.of(run, motion)
     usable = ~motion.standstill
     forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
