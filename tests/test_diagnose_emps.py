@@ -4,9 +4,10 @@ Independent reference: Janot, Gautier & Brunot (2019) identify the EMPS axis wit
 dynamic model and least squares on the same data: M = 95.1 kg (the rig.toml's mass), viscous
 friction Fv = 203.5 N s/m, Coulomb friction Fc = 20.39 N, offset -3.16 N. The record's drive force
 is the controller's command (35.15 N/V times the voltage), so measurement noise hardly limits
-those estimates; ours come from held-out blocks without the paper's filtering and with a
-Stribeck term, hence tolerances of 5 % (Fv), 10 % (Fc) and 0.5 N (offset), about 3x the
-differences measured here (0.5 %, 5 %, 0.1 N)."""
+those estimates. Ours come from held-out blocks, without the paper's filtering, and the
+lubrication candidate's law (Stribeck plus a power-law viscous term) may take another shape of
+the same curve, so the friction force is compared over the record's speeds: RMS within 3 N of
+Fc + Fv |v| (8 % of its mean, 37 N; measured 1.2 N), offset within 0.5 N (measured 0.07 N)."""
 from __future__ import annotations
 
 import json
@@ -14,7 +15,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
+
+from guideway_fmu.physics.friction_laws import stribeck_friction
 
 REAL = Path(__file__).resolve().parents[2] / "shared" / "data" / "real"
 PUBLISHED = {"viscous": 203.5, "coulomb": 20.39, "offset": -3.16}
@@ -31,14 +35,21 @@ def test_emps_validation_viscous_and_coulomb_match_published_identification(fmu_
     lubrication = diagnosis["candidates"][0]
     assert lubrication["effect"] == "lubrication"  # speed-dependent friction explains most
     fitted = lubrication["parameters"]
-    assert fitted["viscous"] == pytest.approx(PUBLISHED["viscous"], rel=0.05)
-    assert fitted["coulomb"] == pytest.approx(PUBLISHED["coulomb"], rel=0.10)
+    position = np.loadtxt(REAL / "emps-validation" / "data.csv", delimiter=",", skiprows=1,
+                          usecols=1)
+    speed = np.abs(np.gradient(position, 1e-3))
+    speed = speed[speed > 0.01]  # moving (1 kHz record)
+    ours = -stribeck_friction(speed, fitted["coulomb"], fitted["static"],
+                              fitted["stribeck_velocity"], fitted["viscous"], 0.0,
+                              fitted["stribeck_exponent"], fitted["viscous_exponent"])
+    published = PUBLISHED["coulomb"] + PUBLISHED["viscous"] * speed
+    assert np.sqrt(np.mean((ours - published) ** 2)) < 3.0
     assert fitted["offset"] == pytest.approx(PUBLISHED["offset"], abs=0.5)
-    # a Coulomb-only baseline misses the viscous term by several per cent of the force range,
-    # and the Stribeck/viscous extension closes a fifth or more of that gap on held-out data
-    assert 0.02 < diagnosis["gap_before"] < 0.04
+    # a Coulomb-only baseline misses the viscous term by a few per cent of the force range, and
+    # the Stribeck/viscous extension closes a fifth or more of it on held-out data (here 42 %)
+    assert 0.01 < diagnosis["gap_before"] < 0.04
     assert lubrication["gap_after"] < 0.8 * diagnosis["gap_before"]
-    assert diagnosis["missing_effect"] in ("lubrication", "unknown")
+    assert diagnosis["missing_effect"] == "lubrication"
     assert (out / "report.html").is_file() and (out / "fit.csv").is_file()
 
 
