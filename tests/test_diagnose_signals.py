@@ -64,6 +64,7 @@ def test_acceleration_window_is_the_shortest_within_the_noise_tolerance_by_hand(
     noise = [1e-6 / np.sqrt(12.0) * np.linalg.norm(savgol_coeffs(w, ORDER, deriv=2, delta=1e-3))
              for w in (window - 2, window)]
     assert noise[1] <= tolerance < noise[0]
+    assert motion.ends.sum() == 2 * (window // 2)  # extrapolated there: marked
     inner = slice(window, -window)
     assert np.sqrt(np.mean((motion.a - truth)[inner] ** 2)) < 1.5 * tolerance
 

@@ -70,7 +70,8 @@ def channel_noise(y, order: int = 2) -> float:
 @dataclass
 class Motion:
     """Feed motion at the samples: x [m], v [m/s], a [m/s^2]; ``standstill`` marks samples whose
-    direction is ambiguous; ``how`` says how each signal was obtained."""
+    direction is ambiguous, ``ends`` those within half a filter window of the record's ends,
+    where the acceleration is extrapolated; ``how`` says how each signal was obtained."""
 
     time: np.ndarray
     x: np.ndarray
@@ -79,6 +80,7 @@ class Motion:
     standstill: np.ndarray
     reversals: np.ndarray  # sample indices where the direction of motion changes
     how: dict
+    ends: np.ndarray
 
     def since_reversal(self) -> tuple[np.ndarray, np.ndarray]:
         """Time [s] and displacement [m] since the last reversal (since the start before the first)."""
@@ -143,16 +145,16 @@ def _acceleration_gain(grid: _Grid, columns: dict, a) -> float:
 
 
 def _acceleration_from_position(grid: _Grid, position, tolerance, per_stroke) -> tuple:
-    """(acceleration [m/s^2], window [samples]): the second derivative of ``position`` [m] by the
-    ORDER filter over the shortest odd window whose output noise, the position's noise times
-    the norm of the filter's coefficients, is at most ``tolerance`` [m/s^2] (the least bias the
-    noise allows; at least NEGLIGIBLE of the acceleration's range, which matters where the force
-    is noise-free), over at most a quarter of ``per_stroke``, the median samples between
-    reversals, and at most LONGEST samples. The position's noise is the rounding noise of recorded values on a lattice (an
-    encoder's counts; the MAD of their differences is biased by the lattice, and after
-    interpolating an uneven record onto the grid misses the rounding errors it averages), else
-    that of its fourth differences on the grid (a smooth motion's curvature hardly shows in
-    them)."""
+    """(acceleration [m/s^2], window [samples], ends [bool mask]): the second derivative of
+    ``position`` [m] by the ORDER filter over the shortest odd window whose output noise, the
+    position's noise times the norm of the filter's coefficients, is at most ``tolerance``
+    [m/s^2] (the least bias the noise allows; at least NEGLIGIBLE of the acceleration's range,
+    which matters where the force is noise-free), over at most a quarter of ``per_stroke``, the
+    median samples between reversals, and at most LONGEST samples. The position's noise is the
+    rounding noise of recorded values on a lattice (an encoder's counts; the MAD of their
+    differences is biased by the lattice, and after interpolating an uneven record onto the grid
+    misses the rounding errors it averages), else that of its fourth differences on the grid (a
+    smooth motion's curvature hardly shows in them)."""
     on_grid = grid.on_grid(position)
     longest = min(grid.longest, LONGEST, max(2 * int(per_stroke // 8) + 1, ORDER + 2))
     window = longest
@@ -166,11 +168,12 @@ def _acceleration_from_position(grid: _Grid, position, tolerance, per_stroke) ->
             break
     a = grid.filter(position, deriv=2, window=window, order=ORDER)
     # within half a window of the ends the filter extrapolates its polynomial, which at ORDER
-    # amplifies the noise many times: the cubic fit over the same window takes over there
+    # amplifies the noise many times: the cubic fit over the same window takes over there (still
+    # an extrapolation: the ends are marked)
     reach = (window // 2) * grid.step
-    edges = (grid.time < grid.time[0] + reach) | (grid.time > grid.time[-1] - reach)
-    a[edges] = grid.filter(position, deriv=2, window=window)[edges]
-    return a, window
+    ends = (grid.time < grid.time[0] + reach) | (grid.time > grid.time[-1] - reach)
+    a[ends] = grid.filter(position, deriv=2, window=window)[ends]
+    return a, window, ends
 
 
 def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Motion:
@@ -216,8 +219,8 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
     reversals = moving[1:][signs[1:] != signs[:-1]]
     if "feed_position" in columns and acceleration_noise is not None:
         per_stroke = np.median(np.diff(reversals)) if reversals.size > 2 else time.size
-        a, window = _acceleration_from_position(grid, columns["feed_position"],
-                                                acceleration_noise, per_stroke)
+        a, window, ends = _acceleration_from_position(grid, columns["feed_position"],
+                                                      acceleration_noise, per_stroke)
         how["feed_acceleration"] = (
             f"derived from feed_position: second derivative, Savitzky-Golay of order {ORDER}, "
             f"{window} samples ({window * grid.step:.4g} s), zero phase, the shortest window "
@@ -226,6 +229,7 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
                                      "; the recorded feed_acceleration is not used (differenced "
                                      "and smoothed by the rig)"))
     else:
+        ends = np.zeros(time.size, dtype=bool)
         if "feed_acceleration" in columns:
             a = measured("feed_acceleration")
         elif "feed_velocity" in columns:
@@ -239,4 +243,4 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         how["feed_acceleration"] += (f"; scaled by {gain:.4g}, the least-squares gain of the "
                                      f"{SHORT}-sample second derivative of feed_position (first "
                                      f"of feed_velocity without it) on it")
-    return Motion(time, x, v, a, standstill, reversals, how)
+    return Motion(time, x, v, a, standstill, reversals, how, ends)
