@@ -61,10 +61,10 @@ def rounding_noise(y) -> float:
     return q / np.sqrt(12.0) if on_lattice else 0.0
 
 
-def channel_noise(y, order: int = 2) -> float:
-    """RMS noise of a measured channel: :func:`noise_rms` (of ``order``), but at least its
-    :func:`rounding_noise`, where most differences are 0 and their MAD says nothing."""
-    return max(noise_rms(y, order), rounding_noise(y))
+def channel_noise(y) -> float:
+    """RMS noise of a measured channel: :func:`noise_rms`, but at least its
+    :func:`rounding_noise`, where most second differences are 0 and their MAD says nothing."""
+    return max(noise_rms(y), rounding_noise(y))
 
 
 @dataclass
@@ -224,8 +224,8 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         how["feed_acceleration"] = (
             f"derived from feed_position: second derivative, Savitzky-Golay of order {ORDER}, "
             f"{window} samples ({window * grid.step:.4g} s), zero phase, the shortest window "
-            f"whose rounding noise stays within {acceleration_noise:.4g} m/s2 RMS (at most a "
-            f"quarter of a stroke)" + ("" if "feed_acceleration" not in columns else
+            f"whose noise from the position stays within {acceleration_noise:.4g} m/s2 RMS (at "
+            f"most a quarter of a stroke)" + ("" if "feed_acceleration" not in columns else
                                      "; the recorded feed_acceleration is not used (differenced "
                                      "and smoothed by the rig)"))
     else:
