@@ -1,7 +1,9 @@
 """The naming decision's parts on synthetic runs, without co-simulation: the cross-validation
-folds, the refinement of a candidate's continuous setting, and the answer for a large gap that
-nothing explains."""
+folds, the refinement of a candidate's continuous setting, the answer for a large gap that
+nothing explains, and the choice between position and running distance on a single-pass record."""
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -69,3 +71,44 @@ def test_unresolved_threshold_decides_that_answer(band_noise_run, monkeypatch):
     # answer above comes from the gap's size, not from a law that explains it
     monkeypatch.setattr(workflow, "UNRESOLVED", np.inf)
     assert workflow.name_effect(band_noise_run).effect == "none"
+
+
+def _ranked(**scores):
+    return sorted(((s, SimpleNamespace(effect=e), 0.0) for e, s in scores.items()),
+                  key=lambda item: -item[0])
+
+
+@pytest.mark.parametrize("back_and_forth, ball_score, chosen", [
+    (False, 995.0, "ball_to_ball_contact"),  # one pass, a tie: the running-distance table
+    (True, 995.0, "position_dependent_friction"),  # strokes revisit positions: scores decide
+    (False, 985.0, "position_dependent_friction"),  # one pass, but beyond SCORE_MIN: scores decide
+    (False, 1005.0, "ball_to_ball_contact"),  # one pass, the running-distance table ahead: a tie
+])
+def test_position_table_gives_way_only_on_single_pass_records_and_in_a_tie(back_and_forth,
+                                                                           ball_score, chosen):
+    t = np.linspace(0.0, 4.0, 4000)
+    x = 0.02 * (1 - np.cos(np.pi * t)) if back_and_forth else 0.015 * t  # [m]
+    ctx = SimpleNamespace(motion=SimpleNamespace(x=x),
+                          distance=np.concatenate(([0.0], np.cumsum(np.abs(np.diff(x))))))
+    ranked = _ranked(position_dependent_friction=1000.0, ball_to_ball_contact=ball_score,
+                     preload_loss=400.0)
+    index, twins = workflow._same_path_choice(ctx, np.ones(t.size, bool), ranked)
+    assert ranked[index][1].effect == chosen
+    tie = not back_and_forth and abs(ball_score - 1000.0) < workflow.SCORE_MIN
+    assert twins == (["position_dependent_friction"] if tie else [])
+
+
+def test_single_pass_ball_run_named_ball_to_ball_with_the_evidence_shared(tmp_path):
+    # seed 7018 draws one long stroke with short jogs (running distance = position + 0.6 mm): the
+    # position table and the running-distance table fit the same curve; the hidden effect is
+    # ball-to-ball contact, and the confidence is split between the two (limiting case: 0.5)
+    truth.make_run(tmp_path / "run", "ball_to_ball_contact", np.random.default_rng(7018),
+                   size=1.0, noise=0.005, n_samples=4000)
+    named = workflow.name_effect(tmp_path / "run")
+    usable, ctx = named.usable, named.ctx
+    assert abs(np.corrcoef(ctx.distance[usable], ctx.motion.x[usable])[0, 1]) > workflow.SAME_PATH
+    scores = {f.effect: s for s, f, _ in named.ranked}
+    assert abs(scores["position_dependent_friction"] - scores["ball_to_ball_contact"]) < workflow.SCORE_MIN
+    assert named.effect == "ball_to_ball_contact"
+    assert named.not_told_apart == ["position_dependent_friction"]
+    assert named.confidence == pytest.approx(0.5, abs=1e-6)

@@ -348,7 +348,7 @@ class PreloadLoss(Candidate):
 
 class BallToBall(_Table):
     """Coulomb level varying irregularly with the running distance, nodes 1 to 4 ball diameters
-    apart (ball guides only)."""
+    apart in steps of sqrt 2 (ball guides only)."""
 
     effect, signal, fmu_name, uses_position = ("ball_to_ball_contact", "running_distance",
                                                "FrictionBallToBall", True)
@@ -360,7 +360,8 @@ class BallToBall(_Table):
     def node_counts(self, ctx):
         diameter = 2.0 * float(ctx.run.sections["guideway"]["element_radius"])
         total = float(ctx.distance[-1])
-        return sorted({int(np.clip(total / (k * diameter), 2, 400)) + 1 for k in (1, 2, 4)})
+        return sorted({int(np.clip(total / (k * diameter), 2, 400)) + 1
+                       for k in np.geomspace(1.0, 4.0, 5)})
 
 
 BASELINE = Candidate()

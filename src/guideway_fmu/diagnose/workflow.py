@@ -15,7 +15,10 @@
    the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap
    exceeds UNRESOLVED noise floors; else ``none``: a small gap that neither physics nor a law
    accounts for is taken as what the data cannot resolve (errors of the measured inputs, such
-   as accelerations differenced from encoder counts), which the synthetic null runs show;
+   as accelerations differenced from encoder counts), which the synthetic null runs show.
+   A record that passes its positions once cannot show friction repeating at the same positions,
+   the mark of position dependence: there a running-distance candidate within SCORE_MIN of the
+   position table is named instead, the pair's evidence shared (:func:`_same_path_choice`);
 5. write the baseline and augmented scenarios, co-simulate them through the FMUs and report the
    held-out gaps of the co-simulations; write diagnosis.json, fit.csv, plots and report.html.
 """
@@ -47,6 +50,11 @@ UNRESOLVED = 2.0
 #: (over the moving mass): its error enters the model as m a, and 0.3 adds 4 % to the noise in
 #: quadrature while the shortest such window keeps the filter's bias on short ramps small
 INPUT_SHARE = 0.3
+#: |corr(running distance, position)| over the usable samples above which the record passes its
+#: positions once (one long stroke with jogs: 0.9998 and more in the synthetic runs where it
+#: happened; strokes back and forth give well under 0.9)
+SAME_PATH = 0.99
+RUNNING_DISTANCE_EFFECTS = ("ball_to_ball_contact", "preload_loss")
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 UNITS = {"time": "s", "position": "m", "velocity": "m/s", "speed": "m/s", "acceleration": "m/s2",
          "time_since_reversal": "s", "displacement_since_reversal": "m", "running_distance": "m"}
@@ -67,6 +75,29 @@ def _confidence(scores: dict, chosen: str) -> float:
     if chosen == "unknown":  # no named model holds: the weight of the best one is what is doubted
         return float(1.0 - weights.max()) if len(weights) > 1 else 0.0
     return float(dict(zip(scores, weights))[chosen])
+
+
+def _same_path_choice(ctx: Context, usable: np.ndarray, ranked: list) -> tuple[int, list[str]]:
+    """(index into ``ranked`` of the candidate to name, effects the record cannot tell apart from it).
+
+    The best-scoring candidate, except on a record that passes its positions once
+    (|corr(S, x)| > SAME_PATH), where the position table and a running-distance candidate that
+    lead the ranking within SCORE_MIN of each other are not told apart: S and x are one function
+    of the other, so both tables fit the same curve and their score difference is noise, while
+    the spec's mark of position dependence, friction repeating at the same positions in every
+    stroke, is absent from the record. The running-distance candidate is named.
+    """
+    effects = [fitted.effect for _, fitted, _ in ranked]
+    if "position_dependent_friction" not in effects:
+        return 0, []
+    if abs(np.corrcoef(ctx.distance[usable], ctx.motion.x[usable])[0, 1]) <= SAME_PATH:
+        return 0, []
+    position = ranked[effects.index("position_dependent_friction")][0]
+    for i, (score, fitted, _) in enumerate(ranked):
+        if (fitted.effect in RUNNING_DISTANCE_EFFECTS and abs(position - score) < SCORE_MIN
+                and ranked[0][0] in (position, score)):
+            return i, ["position_dependent_friction"]
+    return 0, []
 
 
 @dataclass
@@ -92,6 +123,7 @@ class Naming:
     equation: str | None
     law: np.ndarray | None
     confidence: float
+    not_told_apart: list  # effects scoring like the named one that the record cannot tell from it
 
 
 def motion_of(run: MeasuredRun):
@@ -186,8 +218,9 @@ def name_effect(run_dir) -> Naming:
     # a law from signals no candidate uses (normal force, residual peak frequencies) competes
     _, foreign_score, foreign_share = law(foreign=True)
     effect, winner, equation, values = "none", None, None, None
+    chosen, twins = _same_path_choice(ctx, usable, ranked)
     if significant:
-        score, best, _ = ranked[0] if ranked else (-np.inf, None, gap_base)
+        score, best, _ = ranked[chosen] if ranked else (-np.inf, None, gap_base)
         if (score > SCORE_MIN and share(cv_gaps[best.effect]) >= EXPLAINED
                 and score > foreign_score):
             effect, winner = best.effect, best
@@ -200,9 +233,12 @@ def name_effect(run_dir) -> Naming:
             else:  # small structure no model or law accounts for: the inputs' own errors
                 equation, values = None, None
     scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
+    twins = twins if winner is not None else []
+    for twin in twins:  # the record holds no evidence between them: they share the pair's best
+        scores[twin] = scores[effect] = max(scores[twin], scores[effect])
     return Naming(run, ctx, fit_mask, held, usable, baseline, noise, gap_base, gap_cv / noise_cv,
                   white, significant, where, ranked, foreign_score, effect, winner, equation,
-                  values, _confidence(scores, effect))
+                  values, _confidence(scores, effect), twins)
 
 
 def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
@@ -291,6 +327,9 @@ def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
                                     f"gauss-seidel at the median sample interval; wall time "
                                     f"{wall:.2f} s; largest deviation from the vectorised model "
                                     f"{agreement:.3g} of the range",
+                   "not told apart from the named effect (the record passes its positions "
+                   "once: record strokes back and forth over the same stretch to separate them)":
+                       ", ".join(nm.not_told_apart) or "-",
                    "equation (unknown only)": equation or "-",
                    "score of a law in foreign terms (normal force, peak frequencies)":
                        f"{nm.foreign_score:.4g}",
