@@ -127,3 +127,23 @@ def test_acceleration_gain_undoes_the_attenuation_of_short_ramps_against_true_mo
     assert "scaled by" in motion.how["feed_acceleration"]
 
 
+
+
+def test_samples_before_the_encoder_moves_count_as_rest_by_hand():
+    # a 1 mm move from rest to rest read by a 1 um encoder, the velocity differenced over +-3
+    # samples as rigs do: that velocity rises 3 samples before the first count and falls 3 after
+    # the last, where the carriage still rests (by hand: the count has not changed), so those
+    # samples are at rest; every sample once the count has left the rest is moving
+    t = np.arange(2000) * 1e-3
+    phase = np.clip((t - 0.5) / 0.4, 0.0, 1.0)
+    counts = np.round(1e-3 * (phase - np.sin(2 * np.pi * phase) / (2 * np.pi)) / 1e-6) * 1e-6
+    v = np.zeros_like(t)
+    v[3:-3] = (counts[6:] - counts[:-6]) / 6e-3
+    motion = derive_motion(t, {"feed_position": counts, "feed_velocity": v}, None)
+    home = (counts == 0.0) | (counts == counts[-1])
+    limit = 0.01 * np.max(np.abs(motion.v))
+    assert np.any(home & (np.abs(motion.v) > limit))  # the velocity alone would call them moving
+    first, last = np.flatnonzero(~home)[[0, -1]]
+    assert np.all(motion.standstill[:first]) and np.all(motion.standstill[last + 1:])
+    assert not np.any(motion.standstill[first:last + 1] & (np.abs(motion.v[first:last + 1]) > limit))
+    assert "position lies within 5e-07 m" in motion.how["standstill"]

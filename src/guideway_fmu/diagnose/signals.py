@@ -67,6 +67,30 @@ def channel_noise(y) -> float:
     return max(noise_rms(y), rounding_noise(y))
 
 
+def _resolution(position) -> float:
+    """Half-width [m] of the band within which a recorded position has not moved: half an encoder
+    count on a lattice, else three times the position's noise RMS."""
+    q = np.sqrt(12.0) * rounding_noise(position)
+    return 0.5 * q if q > 0.0 else 3.0 * noise_rms(position, 4)
+
+
+def _at_rest(x, standstill, band):
+    """``standstill`` widened, around each run of it, by the neighbouring samples whose position
+    x [m] stays within ``band`` [m] of the run's median position."""
+    rest = standstill.copy()
+    idx = np.flatnonzero(standstill)
+    if idx.size == 0:
+        return rest
+    breaks = np.flatnonzero(np.diff(idx) > 1)
+    for first, last in zip(idx[np.r_[0, breaks + 1]], idx[np.r_[breaks, idx.size - 1]]):
+        home = np.median(x[first:last + 1])
+        for j, step in ((first - 1, -1), (last + 1, 1)):
+            while 0 <= j < x.size and abs(x[j] - home) <= band:
+                rest[j] = True
+                j += step
+    return rest
+
+
 @dataclass
 class Motion:
     """Feed motion at the samples: x [m], v [m/s], a [m/s^2]; ``standstill`` marks samples whose
@@ -214,6 +238,12 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
     limit = STANDSTILL * np.max(np.abs(v))
     standstill = np.abs(v) <= limit
     how["standstill"] = f"|feed_velocity| <= {limit:.4g} m/s ({STANDSTILL:.0%} of its maximum)"
+    if "feed_position" in columns:
+        band = _resolution(columns["feed_position"])
+        standstill = _at_rest(x, standstill, band)
+        how["standstill"] += (f", and the samples next to such a rest whose position lies within "
+                              f"{band:.4g} m of it (the position has not moved; a differenced "
+                              f"velocity spreads starts and stops over its window)")
     moving = np.flatnonzero(~standstill)
     signs = np.sign(v[moving])
     reversals = moving[1:][signs[1:] != signs[:-1]]
