@@ -232,7 +232,10 @@ def _plan_motion(mrng, end_time, travel, v_max, a_max) -> _Motion:
     0.1 to 1 mm (one in four, or when the room is under 5 mm); strokes cycle through the speed
     levels of v_max [m/s] in a random order, and every speed is lowered where the stroke is too
     short to reach it at the acceleration a_max [m/s^2]. The first stroke is shortened to end
-    by half the record, so that every record moves both ways.
+    by half the record, and neither it nor the second is a jog unless the rail leaves no room,
+    so that every record moves both ways over a stretch: with a jog there, one long stroke
+    could fill the record, with a few dozen backward samples, too few to tell the Coulomb level
+    from the force offset (the workflow refuses such records: 3 of 72 draws of 4000 samples).
     """
     segments, strokes = [], []
     t, x, s, direction = 0.0, 0.0, 0.0, 1.0
@@ -241,7 +244,8 @@ def _plan_motion(mrng, end_time, travel, v_max, a_max) -> _Motion:
         dwell = mrng.uniform(0.05, 0.25)
         room = travel - x if direction > 0 else x
         level = 1.0
-        if room < 5e-3 or mrng.random() < 0.25:
+        jog = room < 5e-3 or mrng.random() < 0.25  # drawn for every stroke: streams stay paired
+        if jog and (len(strokes) >= 2 or room < 5e-3):
             length = _loguniform(mrng, 1e-4, 1e-3)
         else:
             length = mrng.uniform(0.3, 1.0) * room
