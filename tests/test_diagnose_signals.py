@@ -147,3 +147,28 @@ def test_samples_before_the_encoder_moves_count_as_rest_by_hand():
     assert np.all(motion.standstill[:first]) and np.all(motion.standstill[last + 1:])
     assert not np.any(motion.standstill[first:last + 1] & (np.abs(motion.v[first:last + 1]) > limit))
     assert "position lies within 5e-07 m" in motion.how["standstill"]
+
+
+@pytest.mark.parametrize("frequency, share", [(0.2, 0.1), (40.0, 0.6)])
+def test_smoothed_load_channel_keeps_its_signal_and_sheds_its_noise_against_truth(frequency, share):
+    # a load varying at 0.2 Hz (the longest window fits) or at 40 Hz (a 33-sample window would
+    # take most of the signal: the discrepancy principle must stop short of it), white noise of
+    # 5 N; the error against the noise-free load must stay below ``share`` of the noise
+    from guideway_fmu.diagnose.signals import smooth_channel
+
+    t = np.arange(4000) * 1e-3
+    load = 800.0 + 200.0 * np.sin(2 * np.pi * frequency * t)
+    noisy = load + np.random.default_rng(2).normal(0.0, 5.0, t.size)
+    smooth, how = smooth_channel(t, noisy)
+    error = np.sqrt(np.mean((smooth - load)[300:-300] ** 2))
+    assert error < share * 5.0
+    assert "smoothed" in how
+
+
+def test_noise_free_slow_load_channel_is_left_as_recorded_limiting_case():
+    from guideway_fmu.diagnose.signals import smooth_channel
+
+    t = np.arange(4000) * 1e-3
+    load = 800.0 + 200.0 * np.sin(2 * np.pi * 0.2 * t)
+    kept, how = smooth_channel(t, load)
+    assert np.array_equal(kept, load) and how == "measured"

@@ -20,7 +20,7 @@ from scipy.optimize import minimize_scalar
 from ..physics import friction_laws
 from ..physics.friction import CoulombParams, coulomb_friction, regularised_sign
 from .run_io import MeasuredRun
-from .signals import Motion
+from .signals import Motion, smooth_channel
 
 GRAVITY = 9.80665  # m/s^2
 SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
@@ -39,10 +39,14 @@ class Context:
     elements: int  # rolling elements per row (1 without [guideway])
     sign: np.ndarray = field(init=False)
     distance: np.ndarray = field(init=False)
+    load: np.ndarray | None = field(init=False)  # N, the normal_force channel, smoothed
+    load_how: str = field(init=False)
 
     def __post_init__(self):
         self.sign = regularised_sign(self.motion.v, self.velocity_tolerance)
         self.distance = friction_laws.running_distance(self.motion.x)
+        self.load, self.load_how = (smooth_channel(self.motion.time, self.run.columns["normal_force"])
+                                    if "normal_force" in self.run.columns else (None, "not recorded"))
 
     @classmethod
     def of(cls, run: MeasuredRun, motion: Motion) -> "Context":

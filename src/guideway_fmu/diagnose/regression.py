@@ -17,17 +17,19 @@ def library(ctx, frequencies, foreign: bool = False) -> dict[str, np.ndarray]:
     """Candidate terms by expression over the channel names (derived signals where unmeasured).
 
     ``foreign``: only the terms no candidate effect contains (the normal force, sinusoids at
-    the residual's peak ``frequencies`` [Hz]) and the baseline's own (constant, Coulomb).
+    the residual's peak ``frequencies`` [Hz]) and the baseline's own (constant, Coulomb). The
+    normal force is the recorded channel smoothed (Context.load), so that its noise neither
+    biases nor blurs the law.
     """
-    m, run = ctx.motion, ctx.run
+    m = ctx.motion
     values = {"feed_velocity": m.v, "feed_position": m.x, "feed_acceleration": m.a,
               "time": m.time, "sign": np.sign, "sin": np.sin, "cos": np.cos, "pi": np.pi}
     terms = ["1", "sign(feed_velocity)"] if foreign else [
         "1", "sign(feed_velocity)", "feed_velocity", "feed_velocity**2*sign(feed_velocity)",
         "feed_position", "feed_position*sign(feed_velocity)", "feed_acceleration",
         "time*sign(feed_velocity)"]
-    if "normal_force" in run.columns:
-        values["normal_force"] = run.columns["normal_force"]
+    if ctx.load is not None:
+        values["normal_force"] = ctx.load
         terms += ["normal_force", "normal_force*sign(feed_velocity)"]
     for f in frequencies:
         terms += [f"sin(2*pi*{f:.6g}*time)", f"cos(2*pi*{f:.6g}*time)"]

@@ -38,6 +38,7 @@ ORDER = 7  # polynomial order of the filter that differentiates the position twi
 #: about 150 samples (their sum is 0.002 instead of 0 at 101 samples, 1800 at 201)
 LONGEST = 101
 NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
+SMOOTHEST = 513  # longest window [samples] of smooth_channel
 
 
 def noise_rms(y, order: int = 2) -> float:
@@ -65,6 +66,30 @@ def channel_noise(y) -> float:
     """RMS noise of a measured channel: :func:`noise_rms`, but at least its
     :func:`rounding_noise`, where most second differences are 0 and their MAD says nothing."""
     return max(noise_rms(y), rounding_noise(y))
+
+
+def smooth_channel(time, y) -> tuple[np.ndarray, str]:
+    """(values, how) of a measured channel that enters a law as a regressor (a load): its noise
+    would bias the law's coefficient toward 0 and add to the residual, so a channel noisier than
+    NOISY of its range is smoothed by the cubic Savitzky-Golay filter of the longest window,
+    doubling from 5 to SMOOTHEST samples, whose residual RMS stays within the channel's noise
+    (discrepancy principle: a longer window would take signal with the noise)."""
+    y = np.asarray(y, dtype=float)
+    noise = channel_noise(y)
+    if noise <= NOISY * max(float(np.ptp(y)), 1e-300):
+        return y, "measured"
+    grid = _Grid(time, 5)
+    kept, how = y, "measured (noisy, but even the 5-sample cubic filter takes signal)"
+    for window in 2 ** np.arange(2, int(np.log2(SMOOTHEST - 1)) + 1) + 1:
+        if window > grid.longest:
+            break
+        smooth = grid.filter(y, window=int(window))
+        if np.sqrt(np.mean((y - smooth) ** 2)) > noise:
+            break
+        kept, how = smooth, (f"measured, smoothed: Savitzky-Golay, cubic, {window} samples, zero "
+                             f"phase, the longest window whose residual stays within the "
+                             f"channel's noise ({noise:.4g} RMS)")
+    return kept, how
 
 
 def _resolution(position) -> float:

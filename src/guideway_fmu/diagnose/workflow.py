@@ -305,7 +305,7 @@ def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
                     "the acceleration is extrapolated)": int((~usable).sum()),
                     "split": f"{locate.blocks(run.time.size)} equal blocks of the record, every third "
                              f"held out; scores cross-validated over the {locate.FOLDS} such folds"},
-        "Motion driving the model": motion.how,
+        "Motion driving the model": {**motion.how, "normal_force (laws only)": ctx.load_how},
         "Gap and noise": {
             "baseline gap (vectorised fit)": f"{nm.gap_base:.6g}",
             "noise floor": "robust RMS of second differences of the baseline residual "
