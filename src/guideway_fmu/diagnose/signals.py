@@ -32,6 +32,9 @@ from scipy.signal import savgol_coeffs, savgol_filter
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
 STANDSTILL = 0.01  # |v| below this fraction of max |v|: direction of motion ambiguous
+#: ... or, where the position tells rests apart, below this many times the velocity's noise RMS:
+#: samples right after a reversal, slower than 1 % of the top speed, carry pre-sliding friction
+AMBIGUOUS = 3.0
 SHORT = 7  # samples of the cubic filter giving the unbiased acceleration the gain refers to
 ORDER = 7  # polynomial order of the filter that differentiates the position twice
 #: longest window of that filter: scipy's coefficients of order 7 lose their precision beyond
@@ -261,14 +264,18 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         x = cumulative_trapezoid(v, time, initial=0.0)
         how["feed_position"] = "integrated from feed_velocity (trapezoid rule, x = 0 at the start)"
     limit = STANDSTILL * np.max(np.abs(v))
-    standstill = np.abs(v) <= limit
-    how["standstill"] = f"|feed_velocity| <= {limit:.4g} m/s ({STANDSTILL:.0%} of its maximum)"
-    if "feed_position" in columns:
+    if "feed_position" in columns:  # rests are told by the position: the velocity's noise decides
+        limit = min(limit, AMBIGUOUS * channel_noise(rough))
         band = _resolution(columns["feed_position"])
-        standstill = _at_rest(x, standstill, band)
-        how["standstill"] += (f", and the samples next to such a rest whose position lies within "
-                              f"{band:.4g} m of it (the position has not moved; a differenced "
-                              f"velocity spreads starts and stops over its window)")
+        standstill = _at_rest(x, np.abs(v) <= limit, band)
+        how["standstill"] = (
+            f"|feed_velocity| <= {limit:.4g} m/s ({AMBIGUOUS:g} times its noise, at most "
+            f"{STANDSTILL:.0%} of its maximum), and the samples next to such a rest whose position "
+            f"lies within {band:.4g} m of it (the position has not moved; a differenced velocity "
+            f"spreads starts and stops over its window)")
+    else:
+        standstill = np.abs(v) <= limit
+        how["standstill"] = f"|feed_velocity| <= {limit:.4g} m/s ({STANDSTILL:.0%} of its maximum)"
     moving = np.flatnonzero(~standstill)
     signs = np.sign(v[moving])
     reversals = moving[1:][signs[1:] != signs[:-1]]
