@@ -288,6 +288,12 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         per_stroke = np.median(np.diff(reversals)) if reversals.size > 2 else time.size
         a, window, ends = _acceleration_from_position(grid, columns["feed_position"],
                                                       acceleration_noise, per_stroke)
+        if rounding_noise(columns["feed_position"]) > 0.0:  # encoder counts: de-quantised
+            x = grid.filter(columns["feed_position"], window=window, order=ORDER)
+            how["feed_position"] = (f"measured, smoothed by the acceleration's filter (order "
+                                    f"{ORDER}, {window} samples, zero phase): the encoder's "
+                                    f"count steps are taken out (pre-sliding builds up over a "
+                                    f"few counts)")
         how["feed_acceleration"] = (
             f"derived from feed_position: second derivative, Savitzky-Golay of order {ORDER}, "
             f"{window} samples ({window * grid.step:.4g} s), zero phase, the shortest window "
