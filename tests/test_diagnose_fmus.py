@@ -67,6 +67,20 @@ def test_dahl_fmu_steps_like_vectorised_dahl_state(instance):
     np.testing.assert_allclose(got, -20.0 * (0.75 * z[:, 0] + 0.25 * z[:, 1]), rtol=1e-12, atol=1e-12)
 
 
+def test_dahl_fmu_third_element_steps_like_vectorised_dahl_state(instance):
+    x = np.array([0.0, 2e-6, 5e-6, 4e-6, 1e-6, 3e-6, 40e-6])
+    f = instance("FrictionDahl", **LOADS, presliding_distance=2e-6, second_distance=1e-5,
+                 second_share=0.25, third_distance=3e-5, third_share=0.5, z_start=0.0, x=0.0, u=0.0)
+    got = [f.get("F_friction")]
+    for k in range(1, x.size):
+        f.set("x", float(x[k]))
+        f.do_step(k * 1e-3, 1e-3)
+        got.append(f.get("F_friction"))
+    z = fl.dahl_state(x, np.array([2e-6, 1e-5, 3e-5]))
+    np.testing.assert_allclose(got, -20.0 * (0.25 * z[:, 0] + 0.25 * z[:, 1] + 0.5 * z[:, 2]),
+                               rtol=1e-12, atol=1e-12)
+
+
 def test_preload_loss_fmu_accumulates_running_distance(instance):
     f = instance("FrictionPreloadLoss", **LOADS, loss=0.5, wear_distance=0.1, x=0.0, u=0.1)
     for k, x in enumerate([0.1, 0.05, 0.15]):  # running distance 0.1 + 0.05 + 0.1 = 0.25
@@ -78,6 +92,7 @@ def test_preload_loss_fmu_accumulates_running_distance(instance):
 @pytest.mark.parametrize("name, bad, text", [
     ("FrictionStribeck", {"stribeck_velocity": 0.0}, "stribeck_velocity"),
     ("FrictionDahl", {"presliding_distance": -1.0}, "presliding_distance"),
+    ("FrictionDahl", {"second_share": 0.6, "third_share": 0.6}, "third_share"),
     ("FrictionPositionDependent", {"factors": "1 x 2"}, "factors"),
     ("FrictionBallToBall", {"table_end": -1.0}, "table_end"),
     ("HorizontalRig", {"mass": -1.0}, "mass"),

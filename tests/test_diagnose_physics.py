@@ -40,6 +40,19 @@ def test_dahl_state_limiting_cases():
     assert fl.dahl_state(x, np.array([1e-6, 1e-3])).shape == (5, 2)
 
 
+def test_dahl_state_in_closed_form_per_run_equals_the_step_by_step_update():
+    # a random walk of encoder counts with stops and a still start: the closed form over each run
+    # of one direction must reproduce dahl_update applied step by step (the FMU's steps)
+    x = np.r_[np.zeros(20), np.cumsum(np.random.default_rng(4).integers(-2, 3, 2000)) * 1e-6]
+    x[500:560] = x[499]
+    distances = np.array([1e-6, 5e-6, 3e-5])
+    stepwise = np.empty((x.size, 3))
+    stepwise[0] = 0.3
+    for k in range(1, x.size):
+        stepwise[k] = fl.dahl_update(stepwise[k - 1], x[k] - x[k - 1], distances)
+    np.testing.assert_allclose(fl.dahl_state(x, distances, z0=0.3), stepwise, rtol=0, atol=1e-13)
+
+
 def test_running_distance_and_preload_factor_by_hand():
     d = fl.running_distance([0.0, 0.2, 0.1, 0.4])
     np.testing.assert_allclose(d, [0.0, 0.2, 0.3, 0.6])

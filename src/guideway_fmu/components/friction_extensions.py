@@ -127,7 +127,8 @@ class FrictionStribeck(_Extension):
 
 
 class FrictionDahl(_Extension):
-    """Dahl pre-sliding friction, two elements in parallel: after a reversal the force builds up."""
+    """Dahl pre-sliding friction, up to three elements in parallel: after a reversal the force
+    builds up (a Maxwell-slip of Dahl elements; the shares left at 0 give one or two)."""
 
     description = __doc__.splitlines()[0]
     uses_position = True
@@ -138,19 +139,24 @@ class FrictionDahl(_Extension):
         self.parameter("presliding_distance", 1e-5, "m", "pre-sliding distance of element 1 (> 0)")
         self.parameter("second_distance", 1e-4, "m", "pre-sliding distance of element 2 (> 0)")
         self.parameter("second_share", 0.0, "1", "share of the Coulomb level in element 2, [0, 1]")
-        self.parameter("z_start", 0.0, "1", "Dahl state z of both elements at the start, [-1, 1]")
-        self.z, self.x_last = np.zeros(2), 0.0
+        self.parameter("third_distance", 1e-3, "m", "pre-sliding distance of element 3 (> 0)")
+        self.parameter("third_share", 0.0, "1",
+                       "share of the Coulomb level in element 3, [0, 1 - second_share]")
+        self.parameter("z_start", 0.0, "1", "Dahl state z of all elements at the start, [-1, 1]")
+        self.z, self.x_last = np.zeros(3), 0.0
 
     def build_model(self):
         checks.positive("presliding_distance", self.presliding_distance)
         checks.positive("second_distance", self.second_distance)
+        checks.positive("third_distance", self.third_distance)
         checks.in_range("second_share", self.second_share, 0.0, 1.0)
+        checks.in_range("third_share", self.third_share, 0.0, 1.0 - self.second_share)
         checks.in_range("z_start", self.z_start, -1.0, 1.0)
         super().build_model()
-        return np.array([self.presliding_distance, self.second_distance])
+        return np.array([self.presliding_distance, self.second_distance, self.third_distance])
 
     def initialise(self):
-        self.z, self.x_last = np.full(2, float(self.z_start)), float(self.x)
+        self.z, self.x_last = np.full(3, float(self.z_start)), float(self.x)
 
     def state_now(self) -> np.ndarray:
         return friction_laws.dahl_update(self.z, self.x - self.x_last, self.model())
@@ -159,7 +165,8 @@ class FrictionDahl(_Extension):
         self.z, self.x_last = self.state_now(), float(self.x)
 
     def evaluate(self):
-        share = np.array([1.0 - self.second_share, self.second_share])
+        share = np.array([1.0 - self.second_share - self.third_share, self.second_share,
+                          self.third_share])
         force = friction_laws.dahl_friction(self.state_now(), self.coulomb_level() * share)
         return {"F_friction": float(np.sum(force))}
 

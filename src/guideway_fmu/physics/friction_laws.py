@@ -59,21 +59,26 @@ def dahl_state(x, presliding_distances, z0=0.0):
 
     ``presliding_distances`` [m] (scalar or 1-D array, all > 0); returns shape (len(x),) for a
     scalar, (len(x), len(distances)) otherwise. z[0] = z0 and z[k] = dahl_update(z[k-1],
-    x[k] - x[k-1], delta), the same step the FMU takes between communication points.
+    x[k] - x[k-1], delta), the same step the FMU takes between communication points, summed in
+    closed form over each run of steps in one direction (a step dx = 0 leaves z as it is).
     """
     x = np.asarray(x, dtype=float)
-    delta = np.asarray(presliding_distances, dtype=float)
+    delta = np.atleast_1d(np.asarray(presliding_distances, dtype=float))
     dx = np.diff(x)
-    target = np.sign(dx)[:, None]
-    decay = np.exp(-np.abs(dx)[:, None] / np.atleast_1d(delta)[None, :])
-    gain = target * (1.0 - decay)
-    z = np.empty((x.size, decay.shape[1]))
+    direction = np.sign(dx)
+    moved = np.flatnonzero(direction)
+    z = np.empty((x.size, delta.size))
     z[0] = z0
-    current = z[0].copy()
-    for k in range(dx.size):  # linear recurrence z_k = decay_k z_(k-1) + gain_k
-        current = decay[k] * current + gain[k]
-        z[k + 1] = current
-    return z[:, 0] if delta.ndim == 0 else z
+    if moved.size == 0:
+        z[1:] = z0
+    else:  # a still step takes the direction before it (the first moving one at the start)
+        direction = direction[moved[np.maximum(np.searchsorted(moved, np.arange(dx.size),
+                                                               side="right") - 1, 0)]]
+        starts = np.r_[0, np.flatnonzero(np.diff(direction)) + 1]
+        for a, b in zip(starts, np.r_[starts[1:], dx.size]):
+            travel = np.cumsum(np.abs(dx[a:b]))[:, None]
+            z[a + 1:b + 1] = direction[a] + (z[a] - direction[a]) * np.exp(-travel / delta)
+    return z[:, 0] if np.ndim(presliding_distances) == 0 else z
 
 
 def dahl_friction(z, coulomb):
