@@ -21,7 +21,7 @@ from scipy.optimize import minimize_scalar
 from ..physics import friction_laws
 from ..physics.friction import CoulombParams, coulomb_friction, regularised_sign
 from .run_io import MeasuredRun
-from .signals import Motion, smooth_channel
+from .signals import SIGN_WIDTH, Motion, smooth_channel
 
 GRAVITY = 9.80665  # m/s^2
 SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
@@ -54,7 +54,7 @@ class Context:
         guideway = run.sections.get("guideway", {})
         load = guideway.get("preload", 0.0) + run.moving_mass * GRAVITY + run.normal_force()
         fixed = run.moving_mass * motion.a if run.channel == "drive_force" else np.zeros_like(motion.a)
-        limit = np.max(np.abs(motion.v)) * 1e-3
+        limit = np.max(np.abs(motion.v)) * SIGN_WIDTH
         return cls(run, motion, np.asarray(run.columns[run.channel], dtype=float), fixed,
                    float(limit), float(max(load, 1.0)), int(guideway.get("elements_per_row", 1)))
 

@@ -37,9 +37,13 @@ from scipy.signal import savgol_coeffs, savgol_filter
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
 STANDSTILL = 0.01  # |v| below this fraction of max |v|: direction of motion ambiguous
-#: ... or, where the position tells rests apart, below this many times the velocity's noise RMS:
-#: samples right after a reversal, slower than 1 % of the top speed, carry pre-sliding friction
+#: ... or, where the position tells rests apart, below this many times the velocity's noise RMS
+#: or the regularised sign's width: samples right after a reversal, slower than 1 % of the top
+#: speed, carry pre-sliding friction
 AMBIGUOUS = 3.0
+#: width v_tol of the models' regularised sign tanh(v / v_tol), as a fraction of max |v| [-];
+#: within AMBIGUOUS widths the sign is a numerical smoothing (tanh 3 = 0.995), not physics
+SIGN_WIDTH = 1e-3
 SHORT = 7  # samples of the cubic filter giving the unbiased acceleration the gain refers to
 ORDER = 7  # polynomial order of the filter that differentiates the position twice
 #: longest window of that filter: scipy's coefficients of order 7 lose their precision beyond
@@ -270,11 +274,12 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         how["feed_position"] = "integrated from feed_velocity (trapezoid rule, x = 0 at the start)"
     limit = STANDSTILL * np.max(np.abs(v))
     if "feed_position" in columns:  # rests are told by the position: the velocity's noise decides
-        limit = min(limit, AMBIGUOUS * channel_noise(rough))
+        limit = min(limit, AMBIGUOUS * max(channel_noise(rough), SIGN_WIDTH * np.max(np.abs(v))))
         band = _resolution(columns["feed_position"])
         standstill = _at_rest(x, np.abs(v) <= limit, band)
         how["standstill"] = (
-            f"|feed_velocity| <= {limit:.4g} m/s ({AMBIGUOUS:g} times its noise, at most "
+            f"|feed_velocity| <= {limit:.4g} m/s ({AMBIGUOUS:g} times its noise or the "
+            f"regularised sign's width, at most "
             f"{STANDSTILL:.0%} of its maximum), and the samples next to such a rest whose position "
             f"lies within {band:.4g} m of it (the position has not moved; a differenced velocity "
             f"spreads starts and stops over its window)")
