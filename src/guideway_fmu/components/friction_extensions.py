@@ -127,8 +127,9 @@ class FrictionStribeck(_Extension):
 
 
 class FrictionDahl(_Extension):
-    """Dahl pre-sliding friction, up to three elements in parallel: after a reversal the force
-    builds up (a Maxwell-slip of Dahl elements; the shares left at 0 give one or two)."""
+    """Dahl pre-sliding friction, up to three elements in parallel; force builds up after reversals.
+
+    A Maxwell-slip of Dahl elements: the shares left at 0 give one or two elements."""
 
     description = __doc__.splitlines()[0]
     uses_position = True
