@@ -265,7 +265,7 @@ class PreslidingHysteresis(Candidate):
             return super()._evaluate(ctx, fit_mask, setting)
         pick = [where[d] for d in elements] + [len(where)]
         g, b = gram[np.ix_(pick, pick)], rhs[pick]
-        coef = np.linalg.solve(g, b)
+        coef = np.linalg.lstsq(g, b, rcond=None)[0]  # a state may repeat another or the ones
         n = int(fit_mask.sum())
         rss = power - 2.0 * coef @ b + coef @ g @ coef
         design = np.column_stack([self.columns(ctx, setting), np.ones(ctx.y.size)])
