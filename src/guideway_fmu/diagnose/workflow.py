@@ -52,7 +52,7 @@ UNRESOLVED = 2.0
 INPUT_SHARE = 0.3
 #: |corr(running distance, position)| over the usable samples above which the record passes its
 #: positions once (one long stroke with jogs: 0.9998 and more in the synthetic runs where it
-#: happened; strokes back and forth give well under 0.9)
+#: happened; records with a return stroke that were looked at: 0.85-0.92)
 SAME_PATH = 0.99
 RUNNING_DISTANCE_EFFECTS = ("ball_to_ball_contact", "preload_loss")
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
