@@ -21,9 +21,10 @@ by its least-squares gain against a short-window derivative of the position (or 
 short acceleration pulses.
 
 The direction of motion is ambiguous (``Motion.standstill``) where the speed is below 1 % of its
-maximum, or, where the position is recorded, below 3 times the velocity's noise, and at the
-samples next to such a rest whose position has not left it (:func:`_at_rest`). A load channel
-that enters a law as a regressor is smoothed by :func:`smooth_channel`.
+maximum, or, where the position is recorded, below 3 times the velocity's noise or the
+regularised sign's width, and at the samples next to such a rest whose position has not left it
+(:func:`_at_rest`). Recorded encoder counts are then de-quantised by the acceleration's filter. A
+load channel that enters a law as a regressor is smoothed by :func:`smooth_channel`.
 """
 from __future__ import annotations
 
