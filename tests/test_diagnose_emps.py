@@ -7,7 +7,7 @@ is the controller's command (35.15 N/V times the voltage), so measurement noise 
 those estimates. Ours come from held-out blocks, without the paper's filtering, and the
 lubrication candidate's law (Stribeck plus a power-law viscous term) may take another shape of
 the same curve, so the friction force is compared over the record's speeds: RMS within 3 N of
-Fc + Fv |v| (8 % of its mean, 37 N; measured 1.2 N), offset within 0.5 N (measured 0.03 N)."""
+Fc + Fv |v| (8 % of its mean, 37 N; measured 1.2 N), offset within 0.5 N (measured 0.05 N)."""
 from __future__ import annotations
 
 import json
