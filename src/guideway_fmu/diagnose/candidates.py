@@ -128,10 +128,14 @@ class Candidate:
             rows = np.vstack([rows, np.column_stack([penalty, np.zeros(len(penalty))])])
             rhs = np.concatenate([rhs, np.zeros(len(penalty))])
         coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
-        n = int(fit_mask.sum())
         rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
-        bic = n * np.log(max(rss, 1e-300) / n) + (design.shape[1] + len(setting)) * np.log(n)
-        return bic, coef, design
+        return self._bic(rss, int(fit_mask.sum()), design.shape[1] + len(setting)), coef, design
+
+    @staticmethod
+    def _bic(rss, n, k) -> float:
+        """BIC of a least-squares fit: residual sum of squares ``rss`` over ``n`` samples, ``k``
+        parameters (linear coefficients and settings)."""
+        return n * np.log(max(rss, 1e-300) / n) + k * np.log(n)
 
     def _refine(self, ctx, fit_mask, grid, best):
         """Each key of ``continuous`` of the best grid setting, in turn, to the BIC minimum on
@@ -266,11 +270,9 @@ class PreslidingHysteresis(Candidate):
         pick = [where[d] for d in elements] + [len(where)]
         g, b = gram[np.ix_(pick, pick)], rhs[pick]
         coef = np.linalg.lstsq(g, b, rcond=None)[0]  # a state may repeat another or the ones
-        n = int(fit_mask.sum())
-        rss = power - 2.0 * coef @ b + coef @ g @ coef
+        rss = float(power - 2.0 * coef @ b + coef @ g @ coef)
         design = np.column_stack([self.columns(ctx, setting), np.ones(ctx.y.size)])
-        bic = n * np.log(max(rss, 1e-300) / n) + (design.shape[1] + len(setting)) * np.log(n)
-        return bic, coef, design
+        return self._bic(rss, int(fit_mask.sum()), design.shape[1] + len(setting)), coef, design
 
     @staticmethod
     def _elements(setting) -> list:
