@@ -105,11 +105,11 @@ def smooth_channel(time, y) -> tuple[np.ndarray, str]:
     return kept, how
 
 
-def _resolution(position) -> float:
+def _resolution(position, rounding) -> float:
     """Half-width [m] of the band within which a recorded position has not moved: half an encoder
-    count on a lattice, else three times the position's noise RMS."""
-    q = np.sqrt(12.0) * rounding_noise(position)
-    return 0.5 * q if q > 0.0 else 3.0 * noise_rms(position, 4)
+    count on a lattice (``rounding`` = q / sqrt(12) > 0), else three times the position's noise
+    RMS."""
+    return 0.5 * np.sqrt(12.0) * rounding if rounding > 0.0 else 3.0 * noise_rms(position, 4)
 
 
 def _at_rest(x, standstill, band):
@@ -206,21 +206,21 @@ def _acceleration_gain(grid: _Grid, columns: dict, a) -> float:
     return float(np.dot(short, a) / power) if power > 0.0 else 1.0
 
 
-def _acceleration_from_position(grid: _Grid, position, tolerance, per_stroke) -> tuple:
+def _acceleration_from_position(grid: _Grid, position, rounding, tolerance, per_stroke) -> tuple:
     """(acceleration [m/s^2], window [samples], ends [bool mask]): the second derivative of
     ``position`` [m] by the ORDER filter over the shortest odd window whose output noise, the
     position's noise times the norm of the filter's coefficients, is at most ``tolerance``
     [m/s^2] (the least bias the noise allows; at least NEGLIGIBLE of the acceleration's range,
     which matters where the force is noise-free), over at most a quarter of ``per_stroke``, the
     median samples between reversals, and at most LONGEST samples. The position's noise is the
-    rounding noise of recorded values on a lattice (an encoder's counts; the MAD of their
+    ``rounding`` noise of recorded values on a lattice (an encoder's counts; the MAD of their
     differences is biased by the lattice, and after interpolating an uneven record onto the grid
     misses the rounding errors it averages), else that of its fourth differences on the grid (a
     smooth motion's curvature hardly shows in them)."""
     on_grid = grid.on_grid(position)
     longest = min(grid.longest, LONGEST, max(2 * int(per_stroke // 8) + 1, ORDER + 2))
     window = longest
-    sigma = rounding_noise(position) or noise_rms(on_grid, order=4)
+    sigma = rounding or noise_rms(on_grid, order=4)
     smooth = savgol_filter(on_grid, longest, ORDER, deriv=2, delta=grid.step, mode="interp")
     allowed = max(tolerance, NEGLIGIBLE * float(np.ptp(smooth)))
     for w in range(ORDER + 2, longest, 2):
@@ -274,9 +274,10 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         x = cumulative_trapezoid(v, time, initial=0.0)
         how["feed_position"] = "integrated from feed_velocity (trapezoid rule, x = 0 at the start)"
     limit = STANDSTILL * np.max(np.abs(v))
+    rounding = rounding_noise(columns["feed_position"]) if "feed_position" in columns else 0.0
     if "feed_position" in columns:  # rests are told by the position: the velocity's noise decides
         limit = min(limit, AMBIGUOUS * max(channel_noise(rough), SIGN_WIDTH * np.max(np.abs(v))))
-        band = _resolution(columns["feed_position"])
+        band = _resolution(columns["feed_position"], rounding)
         standstill = _at_rest(x, np.abs(v) <= limit, band)
         how["standstill"] = (
             f"|feed_velocity| <= {limit:.4g} m/s ({AMBIGUOUS:g} times its noise or the "
@@ -292,9 +293,9 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
     reversals = moving[1:][signs[1:] != signs[:-1]]
     if "feed_position" in columns and acceleration_noise is not None:
         per_stroke = np.median(np.diff(reversals)) if reversals.size > 2 else time.size
-        a, window, ends = _acceleration_from_position(grid, columns["feed_position"],
+        a, window, ends = _acceleration_from_position(grid, columns["feed_position"], rounding,
                                                       acceleration_noise, per_stroke)
-        if rounding_noise(columns["feed_position"]) > 0.0:  # encoder counts: de-quantised
+        if rounding > 0.0:  # encoder counts: de-quantised
             x = grid.filter(columns["feed_position"], window=window, order=ORDER)
             how["feed_position"] = (f"measured, smoothed by the acceleration's filter (order "
                                     f"{ORDER}, {window} samples, zero phase): the encoder's "
