@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from guideway_fmu import monolithic
+from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import system
 
 REPEAT = 2  # further runs of those shorter than 3 s: the wall time printed is the least

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from guideway_fmu import monolithic
+from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import system
 
 HERE = Path(__file__).resolve().parent

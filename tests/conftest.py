@@ -6,7 +6,7 @@ import pytest
 def fmu_dir(tmp_path_factory):
     """All FMUs, extensions included (and their README.md), built once per test session into a
     temporary folder."""
-    from guideway_fmu.build import build
+    from guideway_fmu.components.build import build
 
     out = tmp_path_factory.mktemp("fmus")
     build(out)

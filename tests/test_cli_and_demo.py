@@ -96,7 +96,7 @@ def test_cli_demo_refuses_bad_stop_before_any_work(tmp_path, capsys):
 
 def test_verify_refuses_a_system_the_reference_cannot_model_before_co_simulating(
         fmu_dir, tmp_path, monkeypatch):
-    from guideway_fmu import verify
+    from guideway_fmu.reference import verify
     from guideway_fmu.cosim import master, system
     path = tmp_path / "free.toml"
     path.write_text(f'[experiment]\nstop = 1e-3\nstep = 1e-5\n[components.Body]\n'

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from guideway_fmu import monolithic
+from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import algorithms, master, system
 from guideway_fmu.cosim.fmu_instance import FmuInstance
 from guideway_fmu.cosim.run import run

@@ -9,7 +9,7 @@ import pytest
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
-from guideway_fmu.build import EXTENSION_FMUS
+from guideway_fmu.components.build import EXTENSION_FMUS
 from guideway_fmu.cosim.fmu_instance import FmuInstance
 from guideway_fmu.physics import friction_laws as fl
 

@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from guideway_fmu import ehl_analysis as ea
+from guideway_fmu.analysis import ehl as ea
 from guideway_fmu.cli import main
 from guideway_fmu.physics.ehl import EHLConvergenceError, LineContactEHL, pan_hamrock, solve_steady
 

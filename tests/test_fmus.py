@@ -25,7 +25,7 @@ from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
 from fmpy.logging import addLoggerProxy
 from fmpy.validation import validate_fmu
 
-from guideway_fmu.build import ALL_FMUS, FMUS
+from guideway_fmu.components.build import ALL_FMUS, FMUS
 from guideway_fmu.physics.roller_contact import OpposedRows
 
 NAMES = list(FMUS)

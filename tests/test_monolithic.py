@@ -1,4 +1,4 @@
-"""The monolithic reference (guideway_fmu.monolithic) against independent results."""
+"""The monolithic reference (guideway_fmu.reference.monolithic) against independent results."""
 import math
 import zipfile
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from guideway_fmu import monolithic
+from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import system
 from guideway_fmu.physics import carriage, feed_profiles, guideway
 

@@ -70,14 +70,14 @@ def _ehl_args(sub) -> None:
 
 
 def _ehl(args) -> str:
-    from . import ehl_analysis as ea
+    from .analysis import ehl as ea
     if args.command == "ehl":
         names = ("load", "velocity", "pressure_viscosity", "W", "U", "G", "radius", "e_reduced",
                  "viscosity", "roughness", "sliding_velocity", "peklenik")
         result, summary = ea.solve_point(ea.point_contact(**{k: getattr(args, k) for k in names}),
                                          args.nodes)
         if args.plot:
-            from .ehl_plots import plot_distribution
+            from .analysis.ehl_plots import plot_distribution
             summary["plot"] = str(plot_distribution(result, args.plot))
         text = ea.format_point(summary) + (f"\nplot: {args.plot}" if args.plot else "")
         return json.dumps(summary, indent=2) if args.json else text
@@ -120,7 +120,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         if args.command == "build":
-            from .build import build
+            from .components.build import build
             for path in build(args.out, args.names or None):
                 print(path)
         elif args.command == "run":
@@ -128,7 +128,7 @@ def main(argv: list[str] | None = None) -> int:
             result = run(_load(args), args.out, progress=not args.no_progress)
             print(json.dumps({k: v for k, v in result.summary().items() if k != "parameters"}, indent=2))
         elif args.command == "verify":
-            from .verify import format_table, verify
+            from .reference.verify import format_table, verify
             report = verify(_load(args))
             print(json.dumps(report, indent=2) if args.json else format_table(report))
         elif args.command == "export-ssp":

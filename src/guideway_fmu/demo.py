@@ -22,7 +22,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import build, verify  # noqa: E402
+from .components import build  # noqa: E402
+from .reference import verify  # noqa: E402
 from .cosim import plots, run, system  # noqa: E402
 from .cosim.fmu_instance import FmuInstance  # noqa: E402
 from .diagnose import truth, workflow  # noqa: E402

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..build import build
+from ..components.build import build
 from ..cosim import master, system as cosim_system
 from .candidates import Context, Fit
 

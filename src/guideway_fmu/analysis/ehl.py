@@ -61,8 +61,8 @@ from pathlib import Path
 import numpy as np
 
 from .ehl_plots import plot_distribution, plot_load_history
-from .physics import checks
-from .physics.ehl import (EHLConvergenceError, EHLResult, LineContactEHL, flow_factors,
+from ..physics import checks
+from ..physics.ehl import (EHLConvergenceError, EHLResult, LineContactEHL, flow_factors,
                           pan_hamrock, solve_steady, solve_transient, solver)
 
 RADIUS = 2.5e-3  # m, default reduced radius of ``ehl``: paper 000's roller on a flat raceway

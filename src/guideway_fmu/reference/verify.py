@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from . import monolithic
-from .cosim import master
-from .cosim.system import System
+from ..cosim import master
+from ..cosim.system import System
 
 
 def compare(time, columns: dict, reference) -> tuple[dict, dict]:

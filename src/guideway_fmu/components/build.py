@@ -18,7 +18,7 @@ from pathlib import Path
 from fmpy import read_model_description
 from pythonfmu.builder import FmuBuilder
 
-PACKAGE_DIR = Path(__file__).resolve().parent
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
 SHIPPED = ("__init__.py", "physics", "components")
 
 #: FMU model name -> module in ``components`` that defines it
