@@ -76,6 +76,7 @@ def test_cli_run_bad_scenario_is_a_clear_error(tmp_path, capsys):
     assert "bad.toml" in err and "components" in err and "Traceback" not in err
 
 
+@pytest.mark.slow
 def test_demo_main_job_end_to_end(tmp_path):
     summary = demo.run_demo(tmp_path / "demo", tmp_path / "fmus", stop=2e-3, scenarios=SCENARIOS)
     assert set(summary["runs"]) == set(demo.DEMO_SCENARIOS)

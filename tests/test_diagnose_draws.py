@@ -17,10 +17,13 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-
 from concurrent.futures import ThreadPoolExecutor
 
+import pytest
+
 from guideway_fmu.diagnose import truth
+
+pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
 
 DRAWS = [  # (seed, size, noise, uneven)
     (101, 1.0, 0.010, False),

@@ -20,6 +20,8 @@ import pytest
 
 from guideway_fmu.physics.friction_laws import stribeck_friction
 
+pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
+
 REAL = Path(__file__).resolve().parents[2] / "shared" / "data" / "real"
 PUBLISHED = {"viscous": 203.5, "coulomb": 20.39, "offset": -3.16}
 

@@ -14,6 +14,8 @@ import pytest
 
 from guideway_fmu.diagnose.workflow import diagnose
 
+pytestmark = pytest.mark.slow  # end-to-end: co-simulation in a subprocess
+
 CASES = {  # run name -> (hidden effect, seed)
     "presliding": ("presliding_hysteresis", 11),
     "mass": ("unmodeled_mass", 12),

@@ -233,6 +233,7 @@ def test_ehl_cycle_bad_input_exits_2_with_a_clear_message(tmp_path, capsys, chan
         assert word in err
 
 
+@pytest.mark.slow
 def test_ehl_cycle_on_a_short_real_co_simulation(fmu_dir, tmp_path, capsys):
     run = tmp_path / "run"
     assert main(["run", str(SCENARIO), "--fmus", str(fmu_dir), "--out", str(run), "--stop", "4e-4", "--no-progress"]) == 0

@@ -8,6 +8,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
+pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
+
 ORCHESTRATION = Path(__file__).resolve().parents[1] / "orchestration"
 PRELOAD_PER_ROLLER = 9200.0 / 80  # N, F0 shared by 4 grooves x 20 rollers
 
