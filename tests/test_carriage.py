@@ -12,7 +12,7 @@ import pytest
 from guideway_fmu.physics import carriage
 from guideway_fmu.physics.roller_contact import OpposedRows
 
-BODY = carriage.Body()  # M = 2.9 kg, g = 9.80665 m/s^2
+BODY = carriage.Carriage()  # M = 2.9 kg, g = 9.80665 m/s^2
 K = 4.98e9  # N/m, about the lubricated guideway stiffness at y = 0
 PERIOD = 2 * math.pi * math.sqrt(BODY.mass / K)  # 1.517e-4 s
 F_EXT = 1500.0  # N
@@ -149,8 +149,8 @@ def test_body_defaults_validate():
 
 @pytest.mark.parametrize("field, value", [
     ("mass", 0.0), ("mass", -2.9), ("mass", math.nan), ("gravity", math.inf)])
-def test_body_validate_refuses_bad_field_naming_it(field, value):
-    with pytest.raises(ValueError, match=f"Body.{field}"):
+def test_carriage_validate_refuses_bad_field_naming_it(field, value):
+    with pytest.raises(ValueError, match=f"Carriage.{field}"):
         dataclasses.replace(BODY, **{field: value}).validate()
 
 

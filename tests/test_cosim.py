@@ -137,7 +137,7 @@ def test_order_steps_state_outputs_before_feedthrough_in_a_loop(tmp_path, fmu_di
 def linear_frequency():
     """Natural frequency [Hz] of the dry guideway on the 2.9 kg body for small motion."""
     k = float(guideway.quasi_static_stiffness(guideway.Guideway(), 0.0, lubricated=False))
-    return math.sqrt(k / carriage.Body().mass) / (2 * math.pi)
+    return math.sqrt(k / carriage.Carriage().mass) / (2 * math.pi)
 
 
 def zero_crossing_frequency(time, y):

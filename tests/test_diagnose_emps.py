@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from guideway_fmu.physics.friction_laws import stribeck_friction
+from guideway_fmu.physics.friction_effects import stribeck_friction
 
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
 

@@ -1,4 +1,4 @@
-"""Candidate friction laws and the horizontal rig (physics/friction_laws.py, horizontal_rig.py)
+"""Candidate friction laws and the horizontal rig (physics/friction_effects.py, horizontal_rig.py)
 against hand calculations, limiting cases and a numerical integration."""
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from guideway_fmu.physics import friction_laws as fl
+from guideway_fmu.physics import friction_effects as fl
 from guideway_fmu.physics import horizontal_rig
 
 

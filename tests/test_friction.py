@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from guideway_fmu.physics import friction as fr
+from guideway_fmu.physics import roller_friction as fr
 from guideway_fmu.physics.greenwood_tripp import Surface
 
 PARAMS = fr.MixedFrictionParams()

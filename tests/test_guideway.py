@@ -111,7 +111,7 @@ def test_row_approach_published_formula_eq3_at_45_degrees(y):
 def test_natural_frequency_published_number():
     # Paper 000: f_n = sqrt(K / M) / (2 pi) = 6590 Hz for the unloaded, lubricated guideway.
     stiffness = gw.quasi_static_stiffness(GUIDEWAY, 0.0, SPEED, lubricated=True)
-    f_n = math.sqrt(stiffness / carriage.Body().mass) / (2 * math.pi)
+    f_n = math.sqrt(stiffness / carriage.Carriage().mass) / (2 * math.pi)
     assert f_n == pytest.approx(6590.0, rel=0.01)
 
 

@@ -57,7 +57,7 @@ def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_d
 def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, contact, film_model):
     u, load = 0.29, 5000.0
     g = guideway.Guideway(contact=guideway.LineContact(model=film_model or "extrapolated"))
-    body = carriage.Body()
+    body = carriage.Carriage()
 
     def residual(y):
         f_u, f_l, _, _ = guideway.quasi_static_state(g, y, u, lubricated=film_model is not None)

@@ -35,7 +35,7 @@ PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, paper 000, unloaded case
 
 def rig_facts(u: float = RIG_SPEED) -> dict:
     """k, preload approach, films and natural frequencies of paper 000's rig at y = 0, feed speed u."""
-    g, body = guideway.Guideway(), carriage.Body()
+    g, body = guideway.Guideway(), carriage.Carriage()
     state = guideway.quasi_static_state(g, 0.0, u)
     f_u, h_u = float(state[0]), float(state[2])
     k_lub = float(guideway.quasi_static_stiffness(g, 0.0, u, state=state))

@@ -27,17 +27,17 @@ FMUS = {
     "VerticalDynamics": "vertical_dynamics",
     "ContactDryHertz": "contact",
     "ContactEHL": "contact",
-    "FrictionMixedEHL": "friction",
-    "FrictionCoulomb": "friction",
+    "FrictionMixedEHL": "roller_friction",
+    "FrictionCoulomb": "roller_friction",
 }
 #: FMUs of the model extensions that the discrepancy workflow (diagnose/) adds to a rig model
 EXTENSION_FMUS = {
     "HorizontalRig": "horizontal_rig",
-    "FrictionStribeck": "friction_extensions",
-    "FrictionDahl": "friction_extensions",
-    "FrictionPositionDependent": "friction_extensions",
-    "FrictionPreloadLoss": "friction_extensions",
-    "FrictionBallToBall": "friction_extensions",
+    "FrictionStribeck": "friction_effects",
+    "FrictionDahl": "friction_effects",
+    "FrictionPositionDependent": "friction_effects",
+    "FrictionPreloadLoss": "friction_effects",
+    "FrictionBallToBall": "friction_effects",
 }
 ALL_FMUS = {**FMUS, **EXTENSION_FMUS}
 

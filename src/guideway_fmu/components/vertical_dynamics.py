@@ -24,8 +24,8 @@ class VerticalDynamics(GuidewaySlave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.parameter("mass", carriage.Body.mass, "kg", "mass M of the moving body (rail)")
-        self.parameter("gravity", carriage.Body.gravity, "m/s2", "gravitational acceleration along +y")
+        self.parameter("mass", carriage.Carriage.mass, "kg", "mass M of the moving body (rail)")
+        self.parameter("gravity", carriage.Carriage.gravity, "m/s2", "gravitational acceleration along +y")
         self.parameter("load_static", 0.0, "N", "static part of the external load F_e")
         self.parameter("load_amplitude", 0.0, "N", "amplitude of the harmonic external load F_e")
         self.parameter("load_frequency", 0.0, "Hz", "frequency of the harmonic external load F_e")

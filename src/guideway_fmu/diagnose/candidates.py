@@ -2,7 +2,7 @@
 
 Every model predicts the compared channel as a fixed part (m a for drive_force, 0 for
 friction_force) plus a linear combination of columns built from the physics laws
-(physics/friction_laws.py) plus a constant offset (the sensor zero). A candidate may have a few
+(physics/friction_effects.py) plus a constant offset (the sensor zero). A candidate may have a few
 nonlinear settings (a Stribeck velocity, a pre-sliding distance, a wear distance, a number of
 position knots); for each setting the linear coefficients are a least-squares fit on the fit
 samples, and the setting with the lowest BIC on the fit samples is kept. :meth:`Candidate.fmu`
@@ -18,8 +18,8 @@ from itertools import combinations_with_replacement
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..physics import friction_laws
-from ..physics.friction import CoulombParams, coulomb_friction, regularised_sign
+from ..physics import friction_effects
+from ..physics.roller_friction import CoulombParams, coulomb_friction, regularised_sign
 from .run_io import MeasuredRun
 from .signals import SIGN_WIDTH, Motion, smooth_channel
 
@@ -45,7 +45,7 @@ class Context:
 
     def __post_init__(self):
         self.sign = regularised_sign(self.motion.v, self.velocity_tolerance)
-        self.distance = friction_laws.running_distance(self.motion.x)
+        self.distance = friction_effects.running_distance(self.motion.x)
         self.load, self.load_how = (smooth_channel(self.motion.time, self.run.columns["normal_force"])
                                     if "normal_force" in self.run.columns else (None, "not recorded"))
 
@@ -198,7 +198,7 @@ class Lubrication(Candidate):
         v, tol = ctx.motion.v, ctx.velocity_tolerance
         shape = (setting["stribeck_velocity"], setting["stribeck_exponent"], setting["viscous_exponent"])
         unit = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]  # coulomb, static, viscous
-        return np.column_stack([-friction_laws.stribeck_friction(v, c, s, shape[0], cv, tol,
+        return np.column_stack([-friction_effects.stribeck_friction(v, c, s, shape[0], cv, tol,
                                                                  shape[1], shape[2])
                                 for c, s, cv in unit])
 
@@ -245,11 +245,11 @@ class PreslidingHysteresis(Candidate):
     def state(self, ctx, distance):
         if not self._states or self._states[0] is not ctx:
             d = self.distances(ctx)
-            z = friction_laws.dahl_state(ctx.motion.x, d, self.z_start(ctx))
+            z = friction_effects.dahl_state(ctx.motion.x, d, self.z_start(ctx))
             self._states = (ctx, {float(v): z[:, i] for i, v in enumerate(d)})
         cache = self._states[1]
         if distance not in cache:  # off the grid (refinement)
-            cache[distance] = friction_laws.dahl_state(ctx.motion.x, distance, self.z_start(ctx))
+            cache[distance] = friction_effects.dahl_state(ctx.motion.x, distance, self.z_start(ctx))
         return cache[distance]
 
     def _evaluate(self, ctx, fit_mask, setting):
@@ -280,7 +280,7 @@ class PreslidingHysteresis(Candidate):
         return list(dict.fromkeys(setting[k] for k in PreslidingHysteresis.keys))
 
     def columns(self, ctx, setting):
-        return np.column_stack([-friction_laws.dahl_friction(self.state(ctx, d), 1.0)
+        return np.column_stack([-friction_effects.dahl_friction(self.state(ctx, d), 1.0)
                                 for d in self._elements(setting)])
 
     def physical(self, ctx, setting, coef):
@@ -301,7 +301,7 @@ class _Table(Candidate):
     """Coulomb level times a factor interpolated between equally spaced nodes of a signal;
     settings: the number of nodes."""
 
-    law = staticmethod(friction_laws.position_dependent_friction)
+    law = staticmethod(friction_effects.position_dependent_friction)
 
     def along(self, ctx) -> np.ndarray:
         """The signal the table is over, at the samples."""
@@ -375,8 +375,8 @@ class PreloadLoss(Candidate):
 
     def columns(self, ctx, setting):
         v, d, w, tol = ctx.motion.v, ctx.distance, setting["wear_distance"], ctx.velocity_tolerance
-        kept = -friction_laws.preload_loss_friction(v, d, 1.0, 0.0, w, tol)  # level 1 throughout
-        fading = -friction_laws.preload_loss_friction(v, d, 1.0, 1.0, w, tol)  # exp(-D / w)
+        kept = -friction_effects.preload_loss_friction(v, d, 1.0, 0.0, w, tol)  # level 1 throughout
+        fading = -friction_effects.preload_loss_friction(v, d, 1.0, 1.0, w, tol)  # exp(-D / w)
         return np.column_stack([kept, fading])
 
     def physical(self, ctx, setting, coef):
@@ -396,7 +396,7 @@ class BallToBall(_Table):
 
     effect, signal, fmu_name, uses_position = ("ball_to_ball_contact", "running_distance",
                                                "FrictionBallToBall", True)
-    law = staticmethod(friction_laws.ball_to_ball_friction)
+    law = staticmethod(friction_effects.ball_to_ball_friction)
 
     def along(self, ctx):
         return ctx.distance

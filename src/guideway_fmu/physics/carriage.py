@@ -26,7 +26,7 @@ SUBSTEP_PHASE = 0.05  # rad, largest omega * substep of the Runge-Kutta integrat
 
 
 @dataclass(frozen=True)
-class Body:
+class Carriage:
     """The moving body of eq. 1b; the default mass is our assumption (see ``mass``)."""
 
     # 2.9 kg: about 0.26 m of a 45 mm x 38 mm steel rail (about 11 kg/m), which puts the
@@ -57,11 +57,11 @@ class ExternalLoad:
 
 def from_parameters(mass, gravity, load_static, load_amplitude, load_frequency, load_phase,
                     y_start, y_dot_start):
-    """The validated (Body, ExternalLoad) of the VerticalDynamics FMU's parameters
+    """The validated (Carriage, ExternalLoad) of the VerticalDynamics FMU's parameters
     (fmus/README.md); y_start [m] and y_dot_start [m/s], the caller's initial state, are only
     checked (finite). Raises ValueError naming the parameter that is wrong.
     """
-    body = Body(mass=mass, gravity=gravity)
+    body = Carriage(mass=mass, gravity=gravity)
     body.validate()
     load = ExternalLoad(static=load_static, amplitude=load_amplitude, frequency=load_frequency,
                         phase=load_phase)
@@ -71,7 +71,7 @@ def from_parameters(mass, gravity, load_static, load_amplitude, load_frequency, 
     return body, load
 
 
-def step(body: Body, y: float, v: float, h: float, f_in: float, f_contact: float,
+def step(body: Carriage, y: float, v: float, h: float, f_in: float, f_contact: float,
          k_contact: float = 0.0, c_contact: float = 0.0, t: float = 0.0,
          load: ExternalLoad | None = None, rows: OpposedRows | None = None):
     """Advance (y [m], v [m/s]) from time t [s] by the step h [s]; returns (y, v, a) at t + h.

@@ -64,7 +64,8 @@ import numpy as np
 from fmpy import read_model_description
 from scipy.integrate import solve_ivp
 
-from ..physics import carriage, feed_profiles, friction, guideway
+from ..physics import carriage, feed_profiles, guideway
+from ..physics import roller_friction as friction
 from ..physics import roller_contact as rc
 
 #: model identifier -> the function that builds its physics from the FMU's parameters

@@ -1,7 +1,8 @@
 """Friction FMUs of the four-row roller guideway: FrictionMixedEHL and FrictionCoulomb."""
 from __future__ import annotations
 
-from ..physics import friction, greenwood_tripp
+from ..physics import greenwood_tripp
+from ..physics import roller_friction as friction
 from .base import GuidewaySlave
 
 

@@ -3,7 +3,7 @@
 Inputs F_upper, F_lower [N] (per-roller loads) and u [m/s], output F_friction [N] on the moving
 body, parameters coefficient, rollers_per_groove and velocity_tolerance as FrictionCoulomb: the
 Coulomb level is F_c = coefficient * 2 N (F_upper + F_lower). Effects that depend on the path
-also take the feed position x [m]. The laws are in physics/friction_laws.py.
+also take the feed position x [m]. The laws are in physics/friction_effects.py.
 
 Path-dependent states (Dahl state z, running distance D) are kept at the last accepted step;
 the output evaluates the law from that state to the current x, and ``doStep`` accepts it. In a
@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..physics import checks, friction_laws
-from .friction import _Friction
+from ..physics import checks, friction_effects
+from .roller_friction import _Friction
 
 _LOADS = ("F_upper", "F_lower", "u")
 
@@ -119,7 +119,7 @@ class FrictionStribeck(_Extension):
         return super().build_model()
 
     def evaluate(self):
-        force = friction_laws.stribeck_friction(
+        force = friction_effects.stribeck_friction(
             self.u, self.coulomb_level(), self.static_coefficient * self.total_load(),
             self.stribeck_velocity, self.viscous, self.velocity_tolerance,
             self.stribeck_exponent, self.viscous_exponent)
@@ -160,7 +160,7 @@ class FrictionDahl(_Extension):
         self.z, self.x_last = np.full(3, float(self.z_start)), float(self.x)
 
     def state_now(self) -> np.ndarray:
-        return friction_laws.dahl_update(self.z, self.x - self.x_last, self.model())
+        return friction_effects.dahl_update(self.z, self.x - self.x_last, self.model())
 
     def advance(self, t, h):
         self.z, self.x_last = self.state_now(), float(self.x)
@@ -168,7 +168,7 @@ class FrictionDahl(_Extension):
     def evaluate(self):
         share = np.array([1.0 - self.second_share - self.third_share, self.second_share,
                           self.third_share])
-        force = friction_laws.dahl_friction(self.state_now(), self.coulomb_level() * share)
+        force = friction_effects.dahl_friction(self.state_now(), self.coulomb_level() * share)
         return {"F_friction": float(np.sum(force))}
 
 
@@ -179,7 +179,7 @@ class FrictionPositionDependent(_FactorTable):
     uses_position = True
 
     def evaluate(self):
-        force = friction_laws.position_dependent_friction(
+        force = friction_effects.position_dependent_friction(
             self.u, self.x, self.coulomb_level(), self.table_start, self.table_end, self.model(),
             self.velocity_tolerance)
         return {"F_friction": float(force)}
@@ -201,7 +201,7 @@ class FrictionPreloadLoss(_RunningDistance):
         return super().build_model()
 
     def evaluate(self):
-        force = friction_laws.preload_loss_friction(self.u, self.distance_now(), self.coulomb_level(),
+        force = friction_effects.preload_loss_friction(self.u, self.distance_now(), self.coulomb_level(),
                                                     self.loss, self.wear_distance,
                                                     self.velocity_tolerance)
         return {"F_friction": float(force)}
@@ -214,7 +214,7 @@ class FrictionBallToBall(_RunningDistance, _FactorTable):
     table_of = "running distance"
 
     def evaluate(self):
-        force = friction_laws.ball_to_ball_friction(
+        force = friction_effects.ball_to_ball_friction(
             self.u, self.distance_now(), self.coulomb_level(), self.table_start, self.table_end,
             self.model(), self.velocity_tolerance)
         return {"F_friction": float(force)}

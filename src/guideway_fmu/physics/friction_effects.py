@@ -1,10 +1,10 @@
 """Friction laws that extend Coulomb friction, each a plain function of the feed motion, SI units.
 
 Every law returns the friction force ON the moving part (opposing its motion), like
-physics/friction.py, and is written for numpy arrays over a whole record (the discrepancy
+physics/roller_friction.py, and is written for numpy arrays over a whole record (the discrepancy
 workflow fits them) and for one value at a time (the FMUs evaluate them per communication step).
 ``coulomb`` [N] is the Coulomb level, the friction force at steady sliding; s(u) is
-:func:`friction.regularised_sign`.
+:func:`roller_friction.regularised_sign`.
 
 * Stribeck (lubrication): F = -(F_c + (F_s - F_c) exp(-(|u| / v_s)^d)) s(u) - c_v |u|^b sgn(u):
   from the static level F_s friction falls (or rises) to F_c as the film builds over the
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .friction import regularised_sign
+from .roller_friction import regularised_sign
 
 
 def stribeck_friction(u, coulomb, static, stribeck_velocity, viscous, velocity_tolerance=0.0,
