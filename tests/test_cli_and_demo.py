@@ -99,11 +99,12 @@ def test_verify_refuses_a_system_the_reference_cannot_model_before_co_simulating
         fmu_dir, tmp_path, monkeypatch):
     from guideway_fmu.reference import verify
     from guideway_fmu.cosim import master, system
-    path = tmp_path / "free.toml"
-    path.write_text(f'[experiment]\nstop = 1e-3\nstep = 1e-5\n[components.Body]\n'
-                    f'fmu = "{fmu_dir}/VerticalDynamics.fmu"\n')  # F_contact fed by no contact
+    path = tmp_path / "commanded.toml"
+    path.write_text(f'[experiment]\nstop = 1e-3\nstep = 1e-5\n[components.Feed]\n'
+                    f'fmu = "{fmu_dir}/FeedKinematics.fmu"\n'
+                    f'parameters = {{ profile = "input" }}\n')  # u from an input: no model
     monkeypatch.setattr(master, "simulate", lambda *a, **k: pytest.fail("co-simulation ran"))
-    with pytest.raises(ValueError, match="Body"):
+    with pytest.raises(ValueError, match="Feed"):
         verify.verify(system.load(path))
 
 

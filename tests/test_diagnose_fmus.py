@@ -9,7 +9,7 @@ import pytest
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
-from guideway_fmu.components.build import EXTENSION_FMUS
+from guideway_fmu.components import registry
 from guideway_fmu.cosim.fmu_instance import FmuInstance
 from guideway_fmu.physics import friction_effects as fl
 
@@ -36,7 +36,7 @@ def instance(fmu_dir):
         inst.close()
 
 
-@pytest.mark.parametrize("name", list(EXTENSION_FMUS))
+@pytest.mark.parametrize("name", registry.names("diagnosis"))
 def test_extension_fmu_passes_fmpy_validation(fmu_dir, name):
     assert validate_fmu(str(fmu_dir / f"{name}.fmu")) == []
 

@@ -25,10 +25,10 @@ from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
 from fmpy.logging import addLoggerProxy
 from fmpy.validation import validate_fmu
 
-from guideway_fmu.components.build import ALL_FMUS, FMUS
+from guideway_fmu.components import registry
 from guideway_fmu.physics.roller_contact import OpposedRows
 
-NAMES = list(FMUS)
+NAMES = registry.names("guideway")
 STATUS_DISCARD = 2
 STATUS_ERROR = 3  # status of the log messages that explain a discarded step
 NAN = float("nan")
@@ -641,8 +641,8 @@ def _readme_units(text):
 
 def test_readme_lists_every_fmu_variable_with_its_unit(fmu_dir):
     sections = _readme_units((fmu_dir / "README.md").read_text())
-    assert set(sections) == set(ALL_FMUS)
-    for name in ALL_FMUS:
+    assert set(sections) == set(registry.names())
+    for name in registry.names():
         md = read_model_description(str(fmu_dir / f"{name}.fmu"))
         assert sections[name] == {v.name: v.unit or "" for v in md.modelVariables}
         for var, (_, unit) in CONTRACT.get(name, {}).items():

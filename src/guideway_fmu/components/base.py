@@ -18,12 +18,12 @@ from __future__ import annotations
 
 import copy
 import math
-from abc import abstractmethod
 from xml.etree.ElementTree import Element, SubElement
 
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
 
+from ..physics.dynamics import ContinuousModel
 from .units import BASE_UNITS
 
 
@@ -35,6 +35,9 @@ class GuidewaySlave(Fmi2Slave):
     version = "0.1.0"
     #: attribute names of internal state saved by get/set FMU state, besides the variables
     internal_state: tuple[str, ...] = ()
+    #: "guideway": a subsystem of the roller guide; "diagnosis": a rig model or a candidate
+    #: effect of the discrepancy workflow
+    role = "guideway"
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -93,9 +96,16 @@ class GuidewaySlave(Fmi2Slave):
         return {name: getattr(self, name) for name in self._variables_of(Fmi2Causality.parameter)}
 
     # -- to be provided by the components -----------------------------------------------
-    @abstractmethod
+    @classmethod
+    def continuous_model(cls, parameters: dict) -> ContinuousModel:
+        """The component's physics as a continuous-time model (physics/dynamics.py) from its
+        parameter values by name, validated (raise ValueError naming the parameter): what the
+        FMU evaluates and steps and what the monolithic reference integrates."""
+        raise NotImplementedError(f"{cls.__name__} has no continuous-time model")
+
     def build_model(self):
-        """Build and validate the physics objects from the parameters (raise ValueError)."""
+        """Build and validate the physics from the parameters (raise ValueError)."""
+        return self.continuous_model(self.parameter_values())
 
     def check_inputs(self) -> None:
         """Raise ValueError naming the first input that is non-finite or out of range."""
@@ -106,9 +116,13 @@ class GuidewaySlave(Fmi2Slave):
             if name in self._non_negative and value < 0.0:
                 raise ValueError(f"input {name} must be >= 0, got {value!r}")
 
-    @abstractmethod
+    def model_inputs(self) -> dict[str, float]:
+        """The present values of the inputs the continuous-time model reads."""
+        return {name: getattr(self, name) for name in self.model().inputs}
+
     def evaluate(self) -> dict[str, float]:
-        """Outputs from the current inputs and state."""
+        """Outputs from the current inputs (a stateless model; stateful components override)."""
+        return self.model().outputs(0.0, (), self.model_inputs())
 
     def advance(self, t: float, h: float) -> None:
         """Integrate the internal state from t to t + h [s] (stateless components: nothing)."""

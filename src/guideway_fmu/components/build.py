@@ -18,29 +18,10 @@ from pathlib import Path
 from fmpy import read_model_description
 from pythonfmu.builder import FmuBuilder
 
+from . import registry
+
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 SHIPPED = ("__init__.py", "physics", "components")
-
-#: FMU model name -> module in ``components`` that defines it
-FMUS = {
-    "FeedKinematics": "feed_kinematics",
-    "VerticalDynamics": "vertical_dynamics",
-    "ContactDryHertz": "contact",
-    "ContactEHL": "contact",
-    "FrictionMixedEHL": "roller_friction",
-    "FrictionCoulomb": "roller_friction",
-}
-#: FMUs of the model extensions that the discrepancy workflow (diagnose/) adds to a rig model
-EXTENSION_FMUS = {
-    "HorizontalRig": "horizontal_rig",
-    "FrictionStribeck": "friction_effects",
-    "FrictionDahl": "friction_effects",
-    "FrictionPositionDependent": "friction_effects",
-    "FrictionPreloadLoss": "friction_effects",
-    "FrictionBallToBall": "friction_effects",
-}
-ALL_FMUS = {**FMUS, **EXTENSION_FMUS}
-
 
 # pythonfmu 0.7 releases one reference it does not own to the slave script's namespace each time
 # it creates a slave (NTNU-IHB/PythonFMU issue #228): with nothing more, the namespace is freed at
@@ -74,25 +55,23 @@ def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[
     its README.md (every FMU in the folder)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    names = list(ALL_FMUS) if names is None else names
-    unknown = [n for n in names if n not in ALL_FMUS]
-    if unknown:
-        raise ValueError(f"unknown FMU {unknown[0]!r}; known FMUs: {', '.join(ALL_FMUS)}")
+    classes = [registry.component(n) for n in (registry.names() if names is None else names)]
     tag = code_hash()
     built = []
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_build_") as tmp:
         tmp = Path(tmp)
         sys.path.insert(0, str(tmp))
         try:
-            for name in names:
+            for cls in classes:
+                name = cls.__name__
                 package = f"guideway_fmu_{name}_{tag}"
                 for path in _shipped_files():
                     target = tmp / package / path.relative_to(PACKAGE_DIR)
                     target.parent.mkdir(parents=True, exist_ok=True)
                     shutil.copy2(path, target)
                 script = tmp / f"{name}_{tag}.py"
-                script.write_text(SLAVE_SCRIPT.format(name=name, package=package,
-                                                      module=ALL_FMUS[name]))
+                module = cls.__module__.rsplit(".", 1)[1]
+                script.write_text(SLAVE_SCRIPT.format(name=name, package=package, module=module))
                 fmu = FmuBuilder.build_FMU(script, dest=out_dir / f"{name}.fmu",
                                            project_files=[tmp / package],
                                            canGetAndSetFMUstate=True)

@@ -41,8 +41,17 @@ class FeedKinematics(GuidewaySlave):
         self.output("a", "m/s2", "feed acceleration", depends=("u_cmd",))
         self.time, self.x_input, self.u_previous, self.a_input = 0.0, 0.0, 0.0, 0.0
 
+    @classmethod
+    def continuous_model(cls, parameters):
+        profile = fp.from_parameters(**parameters)
+        if profile is None:
+            raise ValueError("profile 'input' (the velocity from the u_cmd input) has no "
+                             "continuous-time model; choose an analytic or a table profile")
+        return fp.FeedModel(profile)
+
     def build_model(self):
-        return fp.from_parameters(**self.parameter_values())
+        profile = fp.from_parameters(**self.parameter_values())
+        return None if profile is None else fp.FeedModel(profile)
 
     def setup_experiment(self, start_time, stop_time, tolerance):
         self.time = start_time
@@ -57,8 +66,6 @@ class FeedKinematics(GuidewaySlave):
         self.time = t + h
 
     def evaluate(self):
-        profile = self.model()
-        if profile is None:
+        if self.model() is None:
             return {"x": self.x_input, "u": self.u_cmd, "a": self.a_input}
-        x, u, a = profile.evaluate(self.time)
-        return {"x": float(x), "u": float(u), "a": float(a)}
+        return self.model().outputs(self.time, (), {})

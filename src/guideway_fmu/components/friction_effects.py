@@ -24,6 +24,7 @@ class _Extension(_Friction):
     """FrictionCoulomb's interface plus the position input where ``uses_position``."""
 
     uses_position = False
+    role = "diagnosis"
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)

@@ -1,7 +1,7 @@
 """HorizontalRig FMU: the drive force of a horizontal rig from the feed motion and the friction."""
 from __future__ import annotations
 
-from ..physics import checks, horizontal_rig
+from ..physics import horizontal_rig
 from .base import GuidewaySlave
 
 
@@ -12,6 +12,7 @@ class HorizontalRig(GuidewaySlave):
     """
 
     description = __doc__.splitlines()[0]
+    role = "diagnosis"
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -25,14 +26,6 @@ class HorizontalRig(GuidewaySlave):
         self.output("friction_force", "N", "friction resistance along the motion, -F_friction",
                     ("F_friction",))
 
-    def build_model(self):
-        checks.non_negative("mass", self.mass)
-        checks.finite("drive_offset", self.drive_offset)
-        checks.finite("friction_offset", self.friction_offset)
-        return self.parameter_values()
-
-    def evaluate(self):
-        return {"drive_force": float(horizontal_rig.drive_force(self.a, self.F_friction, self.mass,
-                                                                self.drive_offset)),
-                "friction_force": float(horizontal_rig.friction_force(self.F_friction,
-                                                                      self.friction_offset))}
+    @classmethod
+    def continuous_model(cls, parameters):
+        return horizontal_rig.from_parameters(**parameters)

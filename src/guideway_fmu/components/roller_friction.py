@@ -20,7 +20,7 @@ class _Friction(GuidewaySlave):
 
 
 class FrictionMixedEHL(_Friction):
-    """Greenwood-Tripp boundary friction plus viscous shear of the film (paper 000, eqs. 24-31).
+    """Greenwood-Tripp boundary friction plus viscous shear of the film (Soleimanian et al. 2020, eqs. 24-31).
 
     F_friction acts on the moving body, opposite to u. Algebraic, no state.
     """
@@ -46,13 +46,9 @@ class FrictionMixedEHL(_Friction):
         self.output("F_boundary", "N", "boundary (asperity) part of F_friction", self._PARTS)
         self.output("F_viscous", "N", "viscous (film shear) part of F_friction", self._PARTS)
 
-    def build_model(self):
-        return friction.mixed_from_parameters(**self.parameter_values())
-
-    def evaluate(self):
-        total, boundary, viscous = friction.mixed_ehl_friction(
-            self.F_upper, self.F_lower, self.h_upper, self.h_lower, self.u, self.model())
-        return {"F_friction": float(total), "F_boundary": float(boundary), "F_viscous": float(viscous)}
+    @classmethod
+    def continuous_model(cls, parameters):
+        return friction.mixed_from_parameters(**parameters)
 
 
 class FrictionCoulomb(_Friction):
@@ -67,9 +63,6 @@ class FrictionCoulomb(_Friction):
         self.output("F_friction", "N", "friction force on the moving body",
                     ("F_upper", "F_lower", "u"))
 
-    def build_model(self):
-        return friction.coulomb_from_parameters(**self.parameter_values())
-
-    def evaluate(self):
-        return {"F_friction": float(friction.coulomb_friction(self.F_upper, self.F_lower, self.u,
-                                                              self.model()))}
+    @classmethod
+    def continuous_model(cls, parameters):
+        return friction.coulomb_from_parameters(**parameters)

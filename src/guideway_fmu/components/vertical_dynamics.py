@@ -1,4 +1,4 @@
-"""VerticalDynamics FMU: the moving body's vertical degree of freedom (paper 000, eq. 1b)."""
+"""VerticalDynamics FMU: the carriage's vertical degree of freedom (Soleimanian et al. 2020, eq. 1b)."""
 from __future__ import annotations
 
 from ..physics import carriage
@@ -10,7 +10,7 @@ class VerticalDynamics(GuidewaySlave):
     """M y'' = M g + F_e(t) + F_ext - F_contact, y positive along gravity and the external load.
 
     F_e(t) = load_static + load_amplitude sin(2 pi load_frequency t + load_phase) is the external
-    load of paper 000 eq. 1b, evaluated at every instant; the F_ext input is held over a step.
+    load of eq. 1b, evaluated at every instant; the F_ext input is held over a step.
     Over each communication step the contact force is extrapolated with the K_contact and
     C_contact inputs (leave them unconnected, 0, to hold F_contact constant), or, when
     law_force_1um > 0, it is the contact's force law given by the law_* inputs (the two opposed
@@ -52,26 +52,24 @@ class VerticalDynamics(GuidewaySlave):
         self.output("y_ddot", "m/s2", "vertical acceleration", depends=("F_contact", "F_ext"))
         self.y, self.y_dot, self.time = 0.0, 0.0, 0.0
 
-    def build_model(self):
-        return carriage.from_parameters(**self.parameter_values())
+    @classmethod
+    def continuous_model(cls, parameters):
+        return carriage.from_parameters(**parameters)
 
     def setup_experiment(self, start_time, stop_time, tolerance):
         self.time = start_time
 
     def initialise(self):
-        self.y, self.y_dot = float(self.y_start), float(self.y_dot_start)
+        self.y, self.y_dot = self.model().initial_state(self.time, {})
 
     def advance(self, t, h):
-        body, load = self.model()
         rows = OpposedRows(self.law_force_1um, self.law_exponent, self.law_sine,
                            self.law_approach_upper, self.law_approach_lower, self.law_rate_upper,
                            self.law_rate_lower) if self.law_force_1um > 0.0 else None
-        self.y, self.y_dot, _ = carriage.step(body, self.y, self.y_dot, h, self.F_ext, self.F_contact,
-                                              self.K_contact, self.C_contact, t=t, load=load,
-                                              rows=rows)
+        self.y, self.y_dot, _ = self.model().step(self.y, self.y_dot, t, h, self.F_ext,
+                                                  self.F_contact, self.K_contact, self.C_contact,
+                                                  rows)
         self.time = t + h
 
     def evaluate(self):
-        body, load = self.model()
-        return {"y": self.y, "y_dot": self.y_dot,
-                "y_ddot": body.gravity + (load(self.time) + self.F_ext - self.F_contact) / body.mass}
+        return self.model().outputs(self.time, (self.y, self.y_dot), self.model_inputs())

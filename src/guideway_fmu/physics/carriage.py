@@ -1,11 +1,15 @@
-"""Vertical dynamics of the moving body (paper 000, eq. 1b): M y'' = M g + F_e(t) + F_in - F_contact.
+"""Vertical dynamics of the carriage (Soleimanian et al. 2020, eq. 1b):
+M y'' = M g + F_e(t) + F_ext - F_contact.
 
 y [m] is positive in the direction of gravity and of the external load. F_e(t) is the external
-load of eq. 1b (static plus harmonic, :class:`ExternalLoad`), known at every instant; F_in [N] is
-a further force held over the step. Over one communication step the contact force is taken as its
-value at the start of the step plus its tangent, F_contact(t) = F0 + K (y - y0) + C (y' - v0),
-with the contact model's tangent stiffness K [N/m] and damping C [N s/m] (K = C = 0: the force
-is held constant), or, when the contact hands over its force law (``rows``, an
+load of eq. 1b (static plus harmonic, :class:`ExternalLoad`), known at every instant; F_ext [N]
+is a further force held over the step. :meth:`CarriageModel.acceleration` is the one home of the
+equation: the FMU, the reference and the step below all call it.
+
+Over one communication step (:func:`step`) the contact force is taken as its value at the start
+of the step plus its tangent, F_contact(t) = F0 + K (y - y0) + C (y' - v0), with the contact
+model's tangent stiffness K [N/m] and damping C [N s/m] (K = C = 0: the force is held
+constant), or, when the contact hands over its force law (``rows``, an
 :class:`~.roller_contact.OpposedRows`), as that law evaluated at every instant,
 F_contact = rows.force(y, t - t0) + C y'. The ODE is integrated with the classical fourth-order
 Runge-Kutta method on equal substeps of at most SUBSTEP_PHASE / omega, omega the largest of
@@ -19,10 +23,15 @@ import math
 from dataclasses import dataclass
 
 from . import checks
+from .dynamics import ContinuousModel
 from .roller_contact import OpposedRows
 
 STANDARD_GRAVITY = 9.80665  # m/s^2
 SUBSTEP_PHASE = 0.05  # rad, largest omega * substep of the Runge-Kutta integration
+# Nominal magnitudes of y and y' for absolute tolerances: a preloaded rolling contact's approach
+# (about a micrometre) and that amplitude at a natural frequency near 6.6 kHz.
+LENGTH_SCALE = 1.04e-6  # m
+SPEED_SCALE = 0.043  # m/s
 
 
 @dataclass(frozen=True)
@@ -55,63 +64,93 @@ class ExternalLoad:
         return self.static + self.amplitude * math.sin(2.0 * math.pi * self.frequency * t + self.phase)
 
 
-def from_parameters(mass, gravity, load_static, load_amplitude, load_frequency, load_phase,
-                    y_start, y_dot_start):
-    """The validated (Carriage, ExternalLoad) of the VerticalDynamics FMU's parameters
-    (fmus/README.md); y_start [m] and y_dot_start [m/s], the caller's initial state, are only
-    checked (finite). Raises ValueError naming the parameter that is wrong.
+class CarriageModel(ContinuousModel):
+    """The carriage under its external load as a continuous-time model (module doc).
+
+    Inputs F_contact, F_ext [N]; states and outputs y [m], y_dot [m/s]; output y_ddot [m/s^2].
     """
-    body = Carriage(mass=mass, gravity=gravity)
-    body.validate()
+
+    inputs = ("F_contact", "F_ext")
+    states = ("y", "y_dot")
+
+    def __init__(self, carriage: Carriage, load: ExternalLoad, y_start: float = 0.0,
+                 y_dot_start: float = 0.0):
+        self.carriage, self.load = carriage, load
+        self.start = (float(y_start), float(y_dot_start))
+
+    def acceleration(self, t: float, f_contact: float, f_ext: float) -> float:
+        """y'' [m/s^2] of eq. 1b at the time t [s] under the contact force and F_ext [N]."""
+        return self.carriage.gravity + (self.load(t) + f_ext - f_contact) / self.carriage.mass
+
+    def state_scales(self):
+        return (LENGTH_SCALE, SPEED_SCALE)
+
+    def initial_state(self, t, inputs):
+        return self.start
+
+    def derivatives(self, t, state, inputs):
+        return (state[1], self.acceleration(t, inputs["F_contact"], inputs["F_ext"]))
+
+    def outputs(self, t, state, inputs, wanted=None):
+        return {"y": state[0], "y_dot": state[1],
+                "y_ddot": self.acceleration(t, inputs["F_contact"], inputs["F_ext"])}
+
+    def step(self, y: float, v: float, t: float, h: float, f_ext: float, f_contact: float,
+             k_contact: float = 0.0, c_contact: float = 0.0, rows: OpposedRows | None = None):
+        """Advance (y [m], v [m/s]) from the time t [s] by the step h [s]; returns (y, v, y'')
+        at t + h, y'' [m/s^2] under the step's contact force.
+
+        With ``rows`` the contact force is that law plus c_contact y' (f_contact and k_contact
+        are not used), else the tangent F0 + K dy + C dv (module doc).
+        """
+        for name, value in (("k_contact", k_contact), ("c_contact", c_contact)):
+            if not 0.0 <= value < math.inf:
+                raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+        m = self.carriage.mass
+        if rows is None:
+            y0, v0 = y, v
+
+            def contact(s, yy, vv):
+                return f_contact + k_contact * (yy - y0) + c_contact * (vv - v0)
+
+            kk = k_contact / m
+        else:
+            def contact(s, yy, vv):
+                return rows.force(yy, s - t) + c_contact * vv
+
+            kk = max(rows.stiffness(y, 0.0), rows.stiffness(y, h)) / m
+
+        def acc(s, yy, vv):
+            return self.acceleration(s, contact(s, yy, vv), f_ext)
+
+        omega = max(math.sqrt(kk), c_contact / m, 2.0 * math.pi * self.load.frequency)
+        n = max(1, math.ceil(h * omega / SUBSTEP_PHASE))
+        dt = h / n
+        for i in range(n):
+            s = t + i * dt
+            a1 = acc(s, y, v)
+            y2, v2 = y + 0.5 * dt * v, v + 0.5 * dt * a1
+            a2 = acc(s + 0.5 * dt, y2, v2)
+            y3, v3 = y + 0.5 * dt * v2, v + 0.5 * dt * a2
+            a3 = acc(s + 0.5 * dt, y3, v3)
+            y4, v4 = y + dt * v3, v + dt * a3
+            a4 = acc(s + dt, y4, v4)
+            y, v = (y + dt / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4),
+                    v + dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4))
+        return y, v, acc(t + h, y, v)
+
+
+def from_parameters(mass, gravity, load_static, load_amplitude, load_frequency, load_phase,
+                    y_start, y_dot_start) -> CarriageModel:
+    """The validated model of the VerticalDynamics FMU's parameters (fmus/README.md).
+
+    Raises ValueError naming the parameter that is wrong.
+    """
+    carriage = Carriage(mass=mass, gravity=gravity)
+    carriage.validate()
     load = ExternalLoad(static=load_static, amplitude=load_amplitude, frequency=load_frequency,
                         phase=load_phase)
     load.validate()
     checks.finite("y_start", y_start)
     checks.finite("y_dot_start", y_dot_start)
-    return body, load
-
-
-def step(body: Carriage, y: float, v: float, h: float, f_in: float, f_contact: float,
-         k_contact: float = 0.0, c_contact: float = 0.0, t: float = 0.0,
-         load: ExternalLoad | None = None, rows: OpposedRows | None = None):
-    """Advance (y [m], v [m/s]) from time t [s] by the step h [s]; returns (y, v, a) at t + h.
-
-    With ``rows`` the contact force is that law plus c_contact y' (f_contact and k_contact are
-    not used), else the tangent F0 + K dy + C dv (module doc).
-    """
-    for name, value in (("k_contact", k_contact), ("c_contact", c_contact)):
-        if not 0.0 <= value < math.inf:
-            raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
-    m = body.mass
-    cc = c_contact / m
-    fe = (lambda s: 0.0) if load is None or load.amplitude == load.static == 0.0 else (
-        lambda s: load(s) / m)
-    if rows is None:
-        kk = k_contact / m
-        # y'' = b + F_e(t)/M - kk y - cc y' with everything held over the step folded into b.
-        b = body.gravity + (f_in - f_contact + k_contact * y + c_contact * v) / m
-
-        def acc(s, yy, vv):
-            return b + fe(s) - kk * yy - cc * vv
-    else:
-        kk = max(rows.stiffness(y, 0.0), rows.stiffness(y, h)) / m
-        b = body.gravity + f_in / m
-
-        def acc(s, yy, vv):
-            return b + fe(s) - rows.force(yy, s - t) / m - cc * vv
-
-    omega = max(math.sqrt(kk), cc, 0.0 if load is None else 2.0 * math.pi * load.frequency)
-    n = max(1, math.ceil(h * omega / SUBSTEP_PHASE))
-    dt = h / n
-    for i in range(n):
-        s = t + i * dt
-        a1 = acc(s, y, v)
-        y2, v2 = y + 0.5 * dt * v, v + 0.5 * dt * a1
-        a2 = acc(s + 0.5 * dt, y2, v2)
-        y3, v3 = y + 0.5 * dt * v2, v + 0.5 * dt * a2
-        a3 = acc(s + 0.5 * dt, y3, v3)
-        y4, v4 = y + dt * v3, v + dt * a3
-        a4 = acc(s + dt, y4, v4)
-        y, v = (y + dt / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4),
-                v + dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4))
-    return y, v, acc(t + h, y, v)
+    return CarriageModel(carriage, load, y_start, y_dot_start)

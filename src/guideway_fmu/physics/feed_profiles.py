@@ -24,10 +24,11 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
 from . import checks
+from .dynamics import ContinuousModel
 
 __all__ = [
     "FeedProfile", "BiHarmonic", "Oscillating", "Constant", "Trapezoid", "Table", "Replay",
-    "make_profile", "from_parameters", "PROFILES",
+    "make_profile", "from_parameters", "PROFILES", "FeedModel",
 ]
 
 #: profile names of the FeedKinematics FMU; "input" takes the velocity from an input instead
@@ -467,3 +468,16 @@ def from_parameters(profile, frequency, amplitude1, amplitude2, phase1, phase2, 
     if params is None:
         raise ValueError(f"parameter profile must be one of {PROFILES}, got {profile!r}")
     return make_profile(name, **params)
+
+
+class FeedModel(ContinuousModel):
+    """A profile as a stateless continuous-time model: outputs x [m], u [m/s], a [m/s^2] at t."""
+
+    def __init__(self, profile: FeedProfile):
+        self.profile = profile
+
+    def outputs(self, t, state, inputs, wanted=None):
+        if wanted == ("u",):
+            return {"u": self.profile.velocity_at(float(t))}
+        x, u, a = self.profile.evaluate(float(t))
+        return {"x": x, "u": u, "a": a}

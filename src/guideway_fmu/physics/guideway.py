@@ -191,6 +191,7 @@ class RowKernel:
         self.k, self.delta0 = g.k, g.delta0
         self.sin = math.sin(g.contact_angle)
         self.gain = 2 * g.rollers_per_groove * self.sin  # net force per unit load difference
+        self.force_1um = self.gain * self.k * MICRON ** EXPONENT  # N, net force at 1 um approach
         self.floor = g.contact.load_floor()
         c1, self.m = film_law(g.contact, 1.0)
         self.speed_exponent = speed_exponent(g.contact)
@@ -219,7 +220,7 @@ class RowKernel:
              rate_lower: float = 0.0) -> OpposedRows:
         """The net force as the interface law the body integrates over a step: films h [m]
         moving at the given rates [m/s]; ``rows(...).force(y)`` is ``contact(y, ...)[0]``."""
-        return OpposedRows(self.gain * self.k * MICRON ** EXPONENT, EXPONENT, self.sin,
+        return OpposedRows(self.force_1um, EXPONENT, self.sin,
                            self.delta0 + h_upper, self.delta0 + h_lower, rate_upper, rate_lower)
 
     def film_rate(self, h: float, load: float, speed: float) -> float:
@@ -236,26 +237,3 @@ class RowKernel:
         fu, fl = self.loads(y, h_upper, h_lower)
         speed = abs(u)
         return self.film_rate(h_upper, fu, speed), self.film_rate(h_lower, fl, speed)
-
-
-def from_parameters(rollers_per_groove, contact_angle, preload, roller_radius, roller_length,
-                    roller_load_1um, damping, e_reduced=LineContact.e_reduced,
-                    viscosity=LineContact.viscosity,
-                    pressure_viscosity=LineContact.pressure_viscosity,
-                    film_model=LineContact.model):
-    """The validated (Guideway, RowKernel) of the contact FMUs' parameters (fmus/README.md).
-
-    roller_load_1um [N] is k (1e-6 m)^(10/9), 0 for Palmgren's k. The dry contact has no
-    lubricant parameters (e_reduced [Pa], viscosity [Pa s], pressure_viscosity [1/Pa],
-    film_model): their defaults. damping [N s/m] is only checked (>= 0): the caller adds
-    damping * y_dot to the net force. Raises ValueError naming the parameter that is wrong.
-    """
-    checks.non_negative("roller_load_1um", roller_load_1um)
-    checks.non_negative("damping", damping)
-    g = Guideway(rollers_per_groove=rollers_per_groove, contact_angle=contact_angle,
-                 preload=preload, stiffness=roller_load_1um / MICRON ** EXPONENT,
-                 contact=LineContact(radius=roller_radius, length=roller_length,
-                                     e_reduced=e_reduced, viscosity=viscosity,
-                                     pressure_viscosity=pressure_viscosity, model=film_model))
-    g.validate()
-    return g, RowKernel(g)

@@ -12,6 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import checks
+from .dynamics import Algebraic
+
 
 def drive_force(acceleration, friction, mass, offset=0.0):
     """Drive force [N] moving ``mass`` [kg] at ``acceleration`` [m/s^2] against ``friction`` [N]."""
@@ -21,3 +24,14 @@ def drive_force(acceleration, friction, mass, offset=0.0):
 def friction_force(friction, offset=0.0):
     """The friction force as a rig derives it [N]: the resistance along the motion, -F_friction."""
     return offset - np.asarray(friction, dtype=float)
+
+
+def from_parameters(mass, drive_offset, friction_offset) -> Algebraic:
+    """The validated model of the HorizontalRig FMU's parameters (fmus/README.md): inputs
+    a [m/s^2], F_friction [N]; outputs drive_force, friction_force [N]."""
+    checks.non_negative("mass", mass)
+    checks.finite("drive_offset", drive_offset)
+    checks.finite("friction_offset", friction_offset)
+    return Algebraic(("a", "F_friction"), lambda a, F_friction: {
+        "drive_force": drive_force(a, F_friction, mass, drive_offset),
+        "friction_force": friction_force(F_friction, friction_offset)})

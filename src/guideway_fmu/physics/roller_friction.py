@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import checks, hertz_line
+from .dynamics import Algebraic
 from . import greenwood_tripp as gt
 
 
@@ -80,7 +81,9 @@ def _contact(load, h, u, p: MixedFrictionParams):
 def mixed_from_parameters(rollers_per_groove, velocity_tolerance, asperity_density,
                           asperity_radius, roughness, e_reduced, roller_radius, roller_length,
                           viscosity, limiting_shear_stress, limiting_shear_slope):
-    """The validated MixedFrictionParams of the FrictionMixedEHL FMU's parameters (fmus/README.md)."""
+    """The validated model of the FrictionMixedEHL FMU's parameters (fmus/README.md): inputs
+    F_upper, F_lower [N], h_upper, h_lower [m], u [m/s]; outputs F_friction, F_boundary,
+    F_viscous [N] (:func:`mixed_ehl_friction`)."""
     params = MixedFrictionParams(
         surface=gt.Surface(asperity_density=asperity_density, asperity_radius=asperity_radius,
                            roughness=roughness, e_reduced=e_reduced),
@@ -89,7 +92,12 @@ def mixed_from_parameters(rollers_per_groove, velocity_tolerance, asperity_densi
         limiting_shear_stress=limiting_shear_stress, limiting_shear_slope=limiting_shear_slope,
         velocity_tolerance=velocity_tolerance)
     params.validate()
-    return params
+
+    def outputs(F_upper, F_lower, h_upper, h_lower, u):
+        parts = mixed_ehl_friction(F_upper, F_lower, h_upper, h_lower, u, params)
+        return dict(zip(("F_friction", "F_boundary", "F_viscous"), parts))
+
+    return Algebraic(("F_upper", "F_lower", "h_upper", "h_lower", "u"), outputs)
 
 
 def contact_friction(load, h, u, params: MixedFrictionParams):
@@ -158,11 +166,13 @@ class CoulombParams:
 
 
 def coulomb_from_parameters(rollers_per_groove, velocity_tolerance, coefficient):
-    """The validated CoulombParams of the FrictionCoulomb FMU's parameters (fmus/README.md)."""
+    """The validated model of the FrictionCoulomb FMU's parameters (fmus/README.md): inputs
+    F_upper, F_lower [N], u [m/s]; output F_friction [N] (:func:`coulomb_friction`)."""
     params = CoulombParams(coefficient=coefficient, rollers_per_groove=rollers_per_groove,
                            velocity_tolerance=velocity_tolerance)
     params.validate()
-    return params
+    return Algebraic(("F_upper", "F_lower", "u"), lambda F_upper, F_lower, u: {
+        "F_friction": coulomb_friction(F_upper, F_lower, u, params)})
 
 
 def coulomb_friction(F_upper, F_lower, u, params: CoulombParams):

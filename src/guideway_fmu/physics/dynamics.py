@@ -1,0 +1,55 @@
+"""Continuous-time models of physical subsystems: the model-exchange view, SI units.
+
+A model reads named inputs, may carry states, and gives named outputs, like SciPy's
+``fun(t, y)``: ``derivatives(t, state, inputs)`` is the right-hand side and
+``outputs(t, state, inputs)`` the algebraic part. The same object serves twice: an FMU advances
+it over a communication step with the model's own fixed-step integrator (inputs held or
+interpolated as its coupling needs), and the monolithic reference (``reference/``) stacks the
+models of a whole scenario into one state vector and integrates it with SciPy. Each equation is
+therefore written once, here in ``physics/``.
+
+``inputs`` lists only the inputs the equations read; FMU inputs that serve the coupling alone
+(tangents, interface laws) are not among them.
+"""
+from __future__ import annotations
+
+
+class ContinuousModel:
+    """Base class; a stateless model overrides :meth:`outputs` only."""
+
+    #: names of the inputs the equations read
+    inputs: tuple[str, ...] = ()
+    #: names of the states, in the order of the state vectors
+    states: tuple[str, ...] = ()
+
+    def state_scales(self) -> tuple[float, ...]:
+        """Nominal magnitude of each state (its unit): the reference's absolute tolerances are
+        its relative tolerance times these."""
+        return ()
+
+    def initial_state(self, t: float, inputs: dict) -> tuple[float, ...]:
+        """The state at the start time t [s] from the inputs there."""
+        return ()
+
+    def derivatives(self, t: float, state, inputs: dict) -> tuple[float, ...]:
+        """d(state)/dt at the time t [s]."""
+        return ()
+
+    def outputs(self, t: float, state, inputs: dict, wanted=None) -> dict[str, float]:
+        """The outputs at the time t [s]: every one, or at least the ``wanted`` names (a model
+        with a cheaper path for a few of them may give only those)."""
+        raise NotImplementedError
+
+    def evaluate(self, t: float, state, inputs: dict) -> tuple[tuple, dict]:
+        """(derivatives, outputs) at once; a model whose two share work overrides it."""
+        return self.derivatives(t, state, inputs), self.outputs(t, state, inputs)
+
+
+class Algebraic(ContinuousModel):
+    """A stateless model: ``function(**inputs)`` returns the outputs by name."""
+
+    def __init__(self, inputs: tuple[str, ...], function):
+        self.inputs, self.function = tuple(inputs), function
+
+    def outputs(self, t, state, inputs, wanted=None):
+        return self.function(**{name: inputs[name] for name in self.inputs})
