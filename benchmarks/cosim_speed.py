@@ -23,11 +23,12 @@ from pathlib import Path
 
 import numpy as np
 
+from guideway_fmu import scenarios
 from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import master, ssp, system
 from guideway_fmu.reference.verify import compare
 
-SCENARIO = Path(__file__).parents[1] / "orchestration/scenarios/paper000_9000N_4500Hz.toml"
+SCENARIO = scenarios.find("soleimanian2020_9000N_4500Hz")
 STEPS = (2e-6, 1e-6, 5e-7, 2.5e-7, 1.25e-7)  # s, candidate macro steps for (b) and (c)
 PROBE = 0.01  # s, horizon of the libcosim step search
 SIGNAL = "Contact.F_upper"

@@ -65,9 +65,9 @@ def main(argv=None) -> None:
     parser.add_argument("--no-emps", action="store_true")
     args = parser.parse_args(argv)
     fmus = args.out / "fmus"
-    from guideway_fmu.diagnose.scenario import ensure_fmus
+    from guideway_fmu.components.build import ensure
     from guideway_fmu.components import registry
-    ensure_fmus(fmus, ["FeedKinematics", "FrictionCoulomb", *registry.names("diagnosis")])
+    ensure(fmus, ["FeedKinematics", "FrictionCoulomb", *registry.names("diagnosis")])
 
     jobs = [(effect, seed) for seed in range(1, args.draws + 1) for effect in truth.EFFECTS]
     with ThreadPoolExecutor(args.jobs) as pool:

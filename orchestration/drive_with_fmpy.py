@@ -1,7 +1,7 @@
 """Drive the guideway FMUs with fmpy alone, the way you would in your own tool.
 
 Three FMUs (FeedKinematics, VerticalDynamics, ContactEHL) are wired as in
-scenarios/paper000_9000N_4500Hz.toml and stepped with a stabilised Gauss-Seidel loop:
+scenarios/soleimanian2020_9000N_4500Hz.toml and stepped with a stabilised Gauss-Seidel loop:
 
     Feed --u--------------------------> Contact
     Body --y, y_dot-------------------> Contact

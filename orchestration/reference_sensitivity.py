@@ -10,8 +10,8 @@ trajectory is that sensitive to errors of 1e-9: a co-simulation whose error exce
 is no worse than a good integrator one decade looser than the reference. Where all stay tiny, a
 larger co-simulation error comes from the coupling itself.
 
-    python reference_sensitivity.py                       # every paper-000 scenario, 0.2 s
-    python reference_sensitivity.py scenarios/paper000_9000N_2500Hz_dry.toml --stop 0.1
+    python reference_sensitivity.py                       # every shipped scenario, 0.2 s
+    python reference_sensitivity.py soleimanian2020_9000N_2500Hz_dry --stop 0.1
 """
 import argparse
 import json
@@ -20,15 +20,16 @@ from pathlib import Path
 import numpy as np
 
 from guideway_fmu.reference import monolithic
+from guideway_fmu import scenarios
 from guideway_fmu.cosim import system
 
-HERE = Path(__file__).resolve().parent
 SIGNAL = "Contact.F_upper"
 
 p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-p.add_argument("scenarios", type=Path, nargs="*", help="scenario TOMLs (default: all paper 000)")
+p.add_argument("scenarios", nargs="*", help="scenario names or TOML files (default: all shipped)")
 p.add_argument("--stop", type=float, default=None, help="simulated time [s] (default: the scenario's)")
-p.add_argument("--fmus", type=Path, default=None, help="take the FMUs from this folder by file name")
+p.add_argument("--fmus", type=Path, default=Path(__file__).resolve().parents[1] / "fmus",
+               help="take the FMUs from this folder by file name (default: the repository's fmus/)")
 p.add_argument("--offset", type=float, default=1e-12, help="initial displacement [m] (default 1e-12)")
 args = p.parse_args()
 
@@ -40,7 +41,7 @@ def rms_parts(a, b, scale, parts=8):
             [float(np.sqrt(np.mean(d ** 2)) / scale) for d in pieces])
 
 
-for path in args.scenarios or sorted((HERE / "scenarios").glob("paper000_*.toml")):
+for path in map(scenarios.find, args.scenarios or scenarios.names()):
     s = system.load(path, args.fmus)
     if args.stop is not None:
         s = s.with_changes(stop=args.stop)

@@ -3,23 +3,25 @@
 The same as `guideway-fmu run`, spelled out; compare drive_with_fmpy.py for what the master does.
 
     python run_scenario.py                                  # 9000 N at 4500 Hz, 0.01 s
-    python run_scenario.py scenarios/paper000_unloaded.toml --stop 0.05
+    python run_scenario.py soleimanian2020_unloaded --stop 0.05     # a shipped scenario or a file
 """
 import argparse
 from pathlib import Path
 
+from guideway_fmu import scenarios
 from guideway_fmu.cosim import master, plots, system
 
 HERE = Path(__file__).resolve().parent
 
 p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-p.add_argument("scenario", type=Path, nargs="?", default=HERE / "scenarios/paper000_9000N_4500Hz.toml")
+p.add_argument("scenario", nargs="?", default="soleimanian2020_9000N_4500Hz")
 p.add_argument("--stop", type=float, default=0.01, help="simulated time [s] (default 0.01)")
 p.add_argument("--out", type=Path, default=HERE.parent / "out/run_scenario", help="output folder")
-p.add_argument("--fmus", type=Path, default=None, help="take the FMUs from this folder by file name")
+p.add_argument("--fmus", type=Path, default=HERE.parent / "fmus",
+               help="take the FMUs from this folder by file name (default: the repository's fmus/)")
 args = p.parse_args()
 
-s = system.load(args.scenario, args.fmus)  # checked against every FMU's modelDescription
+s = system.load(scenarios.find(args.scenario), args.fmus)  # checked against every FMU's modelDescription
 s = s.with_changes(stop=args.stop)  # also step=... [s], algorithm="gauss-seidel", ...
 result = master.simulate(s, progress=True)  # raises master.SimulationError if an FMU fails
 args.out.mkdir(parents=True, exist_ok=True)

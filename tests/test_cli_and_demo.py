@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from guideway_fmu import cli, demo
+from guideway_fmu import cli, demo, scenarios
 from guideway_fmu.physics import guideway
 
 
@@ -33,12 +33,12 @@ def test_stiffness_curves_through_fmus_match_physics_derivative(fmu_dir):
     assert abs(curves["F_lubricated"][10]) < 1e-6  # y = 0: symmetric preload
 
 
-SCENARIOS = Path(__file__).parents[1] / "orchestration" / "scenarios"
+SCENARIOS = scenarios.FOLDER
 
 
 def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_path, capsys):
     out = tmp_path / "run"
-    assert cli.main(["run", str(SCENARIOS / "paper000_unloaded.toml"), "--fmus", str(fmu_dir),
+    assert cli.main(["run", str(SCENARIOS / "soleimanian2020_unloaded.toml"), "--fmus", str(fmu_dir),
                      "--stop", "1.5e-3", "--out", str(out), "--no-progress"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["steps"] == 375 and summary["algorithm"] == "stabilised"  # 4 us steps
@@ -52,7 +52,7 @@ def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_p
 
 
 def test_cli_verify_json_meets_the_accuracy_target_on_a_short_loaded_run(fmu_dir, capsys):
-    assert cli.main(["verify", str(SCENARIOS / "paper000_9000N_4500Hz.toml"), "--fmus", str(fmu_dir),
+    assert cli.main(["verify", str(SCENARIOS / "soleimanian2020_9000N_4500Hz.toml"), "--fmus", str(fmu_dir),
                      "--stop", "2e-3", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
     assert set(report) >= {"rms_error", "peak_error", "wall_time_cosim", "wall_time_reference"}
@@ -62,7 +62,7 @@ def test_cli_verify_json_meets_the_accuracy_target_on_a_short_loaded_run(fmu_dir
 
 def test_cli_export_ssp_writes_a_package(fmu_dir, tmp_path, capsys):
     out = tmp_path / "case.ssp"
-    assert cli.main(["export-ssp", str(SCENARIOS / "paper000_9000N_4500Hz_dry.toml"),
+    assert cli.main(["export-ssp", str(SCENARIOS / "soleimanian2020_9000N_4500Hz_dry.toml"),
                      "--fmus", str(fmu_dir), str(out)]) == 0
     assert zipfile.is_zipfile(out)
     assert "resources/ContactDryHertz.fmu" in zipfile.ZipFile(out).namelist()
@@ -80,8 +80,8 @@ def test_cli_run_bad_scenario_is_a_clear_error(tmp_path, capsys):
 def test_demo_main_job_end_to_end(tmp_path):
     summary = demo.run_demo(tmp_path / "demo", tmp_path / "fmus", stop=2e-3, scenarios=SCENARIOS)
     assert set(summary["runs"]) == set(demo.DEMO_SCENARIOS)
-    assert summary["verify"]["paper000_9000N_4500Hz"]["rms_error_Contact.F_upper"] < 0.01
-    assert (tmp_path / "demo" / "paper000_9000N_4500Hz_dry" / "spectrum.png").exists()
+    assert summary["verify"]["soleimanian2020_9000N_4500Hz"]["rms_error_Contact.F_upper"] < 0.01
+    assert (tmp_path / "demo" / "soleimanian2020_9000N_4500Hz_dry" / "spectrum.png").exists()
     diagnosis = summary["diagnose"]
     assert diagnosis["missing_effect"] == diagnosis["hidden_effect"] == "presliding_hysteresis"
     assert diagnosis["gap_after"] < 0.5 * diagnosis["gap_before"]

@@ -12,6 +12,7 @@ from guideway_fmu.cosim import algorithms, master, system
 from guideway_fmu.cosim.fmu_instance import FmuInstance
 from guideway_fmu.cosim.run import run
 from guideway_fmu.physics import carriage, guideway
+from guideway_fmu import scenarios
 
 RIG = """
 [experiment]
@@ -78,7 +79,7 @@ def test_load_reads_components_connections_tangents(tmp_path, fmu_dir):
     (lambda t: t.replace("ContactDryHertz.fmu", "Nope.fmu"), r"\[components.Contact\] key 'fmu': FMU file .*Nope.fmu does not exist"),
     (lambda t: t.replace("y_start = 2e-7", "y_begin = 2e-7"), r"\[components.Body.parameters\] key 'y_begin': VerticalDynamics.fmu has no parameter"),
     (lambda t: t.replace("y_start = 2e-7", 'y_start = "high"'), r"\[components.Body.parameters\] key 'y_start': Real variable cannot take 'high'"),
-    (lambda t: t.replace('to = "Contact.y"\n', 'to = "Contact.F_upper"\n'), r"\[connections #1\] key 'to': Contact.F_upper is a output, not an input"),
+    (lambda t: t.replace('to = "Contact.y"\n', 'to = "Contact.F_upper"\n'), r"\[connections #1\] key 'to': Contact.F_upper is an output, not an input"),
     (lambda t: t.replace('from = "Body.y"\n', 'from = "Body.z"\n'), r"\[connections #1\] key 'from': VerticalDynamics.fmu has no variable 'z'"),
     (lambda t: t.replace('from = "Body.y"\n', 'from = "Bodyy"\n'), r"\[connections #1\] key 'from': must be '<instance>.<variable>'"),
     (lambda t: t.replace('from = "Body.y_dot"\nto = "Contact.y_dot"', 'from = "Body.y_dot"\nto = "Contact.y"'), r"\[connections #2\] key 'to': Contact.y is already fed by Body.y"),
@@ -90,9 +91,9 @@ def test_load_reads_components_connections_tangents(tmp_path, fmu_dir):
     (lambda t: t + 'model = { law_sine = "Body.F_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Body.F_contact is already fed by Contact.F_contact"),
     (lambda t: t + 'model = { law_sine = "Body.K_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Body.K_contact is already fed by Contact.K_contact"),
     (lambda t: t.replace('to = "Body.F_contact"', 'to = "Body.K_contact"'), r"\[tangents #1\] key 'to_stiffness': Body.K_contact is already fed by Contact.F_contact"),
-    (lambda t: t + 'model = { law_sine = "Body.y" }\n', r"\[tangents #1.model\] key 'law_sine': Body.y is a output, not an input"),
+    (lambda t: t + 'model = { law_sine = "Body.y" }\n', r"\[tangents #1.model\] key 'law_sine': Body.y is an output, not an input"),
     (lambda t: t + 'settings = { preload = "high" }\n', r"\[tangents #1.settings\] key 'preload': Real variable cannot take 'high'"),
-    (lambda t: t + 'settings = { y = 1.0 }\n', r"\[tangents #1.settings\] key 'y': Contact.y is a input, not an parameter"),
+    (lambda t: t + 'settings = { y = 1.0 }\n', r"\[tangents #1.settings\] key 'y': Contact.y is an input, not a parameter"),
     (lambda t: t + "\n[plots]\nfilm = \"Contact.h_upper\"\n", r"\[plots\] key 'film': must be list"),
     (lambda t: t.replace("[experiment]", "[experiment\n"), r"not valid TOML"),
 ])
@@ -117,14 +118,58 @@ def test_fmu_dir_override_takes_fmus_by_name(tmp_path, fmu_dir):
     assert s.components["Contact"].fmu == fmu_dir / "ContactDryHertz.fmu"
 
 
-def test_every_committed_scenario_loads_and_is_generated():
+def _generator():
     import importlib.util
     root = Path(__file__).parents[1] / "orchestration"
-    spec = importlib.util.spec_from_file_location("gen", root / "make_paper000_scenarios.py")
+    spec = importlib.util.spec_from_file_location("gen", root / "make_soleimanian2020_scenarios.py")
     gen = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gen)
-    committed = {p.stem: p.read_text() for p in (root / "scenarios").glob("*.toml")}
-    assert committed == gen.scenarios(), "run python orchestration/make_paper000_scenarios.py"
+    return gen
+
+
+def _described(s: system.System) -> tuple:
+    """Everything a scenario says, FMUs by file name."""
+    return (s.name, s.description, {n: (c.fmu.name, c.parameters) for n, c in s.components.items()},
+            s.connections, s.experiment, s.tangents, s.record, s.record_interval, s.plots)
+
+
+def test_every_shipped_scenario_is_what_its_generator_writes(tmp_path):
+    gen = _generator()
+    built = gen.scenarios()
+    assert sorted(built) == scenarios.names()
+    for name, s in built.items():
+        dump_path = system.dump(s, tmp_path / f"{name}.toml", gen.HEADER)
+        assert dump_path.read_text() == scenarios.find(name).read_text(), (
+            "run python orchestration/make_soleimanian2020_scenarios.py")
+
+
+@pytest.mark.parametrize("name", scenarios.names())
+def test_dump_then_load_round_trips_every_shipped_scenario(fmu_dir, tmp_path, name):
+    original = system.load(scenarios.find(name), fmu_dir)
+    again = system.load(system.dump(original, tmp_path / "again.toml"))
+    assert _described(again) == _described(original)
+    assert all(again.components[n].fmu.resolve() == c.fmu.resolve()
+               for n, c in original.components.items())
+
+
+def test_builder_writes_a_checked_system_that_loads_back_equal(fmu_dir, tmp_path):
+    b = system.Builder("built", "a rig from code").experiment(stop=1e-3, step=1e-5,
+                                                               algorithm="stabilised")
+    b.component("Body", fmu_dir / "VerticalDynamics.fmu", load_static=100.0, y_start=1e-7)
+    b.component("Contact", fmu_dir / "ContactDryHertz.fmu", preload=8000.0)
+    b.connect("Body.y", "Contact.y").connect("Contact.F_contact", "Body.F_contact")
+    b.tangent("Contact.F_contact", "Contact.y", "fd", "Body.K_contact")
+    b.record(["Body.y"], interval=1e-4).plots(time=["Body.y"], skip=0.0)
+    built = b.system()
+    assert built.variables["Body"]["y"].causality == "output"  # checked against the FMUs
+    loaded = system.load(system.dump(built, tmp_path / "built.toml"))
+    assert _described(loaded) == _described(built)
+    assert master.simulate(loaded).recording.columns["Body.y"].size == 11
+
+
+def test_builder_refuses_a_malformed_reference_naming_the_key():
+    with pytest.raises(system.ScenarioError, match="to must be '<instance>.<variable>'"):
+        system.Builder("x").connect("Body.y", "Contact")
 
 
 # -- ordering -----------------------------------------------------------------------------
@@ -182,7 +227,7 @@ def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_20x
     # against the monolithic SciPy reference: the stabilised coupling with the contact's force
     # law (tangent `model`, films interpolated over the body's step) against the linear tangent
     # alone. Measured: 4.6e-5 against 9.2e-4 of the F_upper range.
-    path = Path(__file__).parents[1] / "orchestration/scenarios/paper000_9000N_2500Hz.toml"
+    path = scenarios.find("soleimanian2020_9000N_2500Hz")
     with_law = system.load(path, fmu_dir).with_changes(stop=0.01)
     tangent_only = dataclasses.replace(with_law, tangents=tuple(
         dataclasses.replace(t, model=(), settings=()) for t in with_law.tangents))
@@ -198,7 +243,7 @@ def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_20x
 @pytest.mark.parametrize("algorithm, interpolating", [("stabilised", True), ("jacobi", False)])
 def test_tangent_settings_apply_under_the_stabilised_algorithm_only(fmu_dir, algorithm,
                                                                     interpolating):
-    path = Path(__file__).parents[1] / "orchestration/scenarios/paper000_9000N_2500Hz.toml"
+    path = scenarios.find("soleimanian2020_9000N_2500Hz")
     s = system.load(path, fmu_dir).with_changes(stop=2e-5, algorithm=algorithm)
     assert bool(master.simulate(s).parameters["Contact"]["interpolate_inputs"]) is interpolating
 

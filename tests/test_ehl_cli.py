@@ -6,12 +6,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from guideway_fmu import scenarios
 from guideway_fmu.analysis import ehl as ea
 from guideway_fmu.cli import main
 from guideway_fmu.physics.ehl import EHLConvergenceError, LineContactEHL, pan_hamrock, solve_steady
 
 CHECK_POINT = ["--W", "1e-4", "--U", "1e-11", "--G", "4500"]
-SCENARIO = Path(__file__).parents[1] / "orchestration" / "scenarios" / "paper000_9000N_9000Hz.toml"
+SCENARIO = scenarios.find("soleimanian2020_9000N_9000Hz")
 PARAMETERS = {"roller_length": 0.008, "roller_radius": 0.0025, "e_reduced": 2e11,
               "viscosity": 0.195, "pressure_viscosity": 2.2e-8}
 

@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from guideway_fmu import scenarios
+
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
 
 ORCHESTRATION = Path(__file__).resolve().parents[1] / "orchestration"
@@ -53,11 +55,11 @@ def test_drive_with_fmpy_explicit_coupling_is_reported_unstable(fmu_dir, tmp_pat
 
 
 def test_run_scenario_unloaded(fmu_dir, tmp_path):
-    scenario = ORCHESTRATION / "scenarios" / "paper000_unloaded.toml"
+    scenario = scenarios.find("soleimanian2020_unloaded")
     proc = _run("run_scenario.py", scenario, "--fmus", fmu_dir, "--stop", 2e-4,
                 "--out", tmp_path / "out", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
-    assert "paper000_unloaded: 50 steps (0 rejected)" in proc.stdout, proc.stdout  # 4 us
+    assert "soleimanian2020_unloaded: 50 steps (0 rejected)" in proc.stdout, proc.stdout  # 4 us
     # unloaded: every roller carries its preload share plus the film's extra approach (~144 N)
     f_upper = _column(tmp_path / "out" / "results.csv", "Contact.F_upper")
     assert all(PRELOAD_PER_ROLLER < f < 1.5 * PRELOAD_PER_ROLLER for f in f_upper)
@@ -65,11 +67,11 @@ def test_run_scenario_unloaded(fmu_dir, tmp_path):
 
 
 def test_reference_sensitivity_reports_a_small_growing_change(fmu_dir, tmp_path):
-    scenario = ORCHESTRATION / "scenarios/paper000_9000N_2500Hz_dry.toml"
+    scenario = scenarios.find("soleimanian2020_9000N_2500Hz_dry")
     proc = _run("reference_sensitivity.py", scenario, "--fmus", fmu_dir, "--stop", 2e-3, cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     report = json.loads(proc.stdout)
-    assert report["scenario"] == "paper000_9000N_2500Hz_dry"
+    assert report["scenario"] == "soleimanian2020_9000N_2500Hz_dry"
     # a 1e-12 m offset on a ~1 um approach: a change of order 1e-6 of the range, not zero
     assert 0 < report["rms_offset"] < 1e-4
     assert 0 < report["rms_rtol_1e-12"] < 1e-4

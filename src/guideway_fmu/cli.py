@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle``."""
+"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle``."""
 from __future__ import annotations
 
 import argparse
@@ -9,17 +9,24 @@ from pathlib import Path
 
 
 def _scenario_args(p) -> None:
-    p.add_argument("scenario", type=Path, help="scenario TOML (see orchestration/scenarios/)")
+    p.add_argument("scenario", help="scenario TOML file, or the name of a shipped scenario "
+                   "(guideway-fmu scenarios lists them)")
     p.add_argument("--fmus", type=Path, default=None,
-                   help="take every FMU by file name from this folder instead of the scenario's paths")
+                   help="take every FMU by file name from this folder instead of the scenario's "
+                        "paths (shipped scenarios: default ./fmus, built where missing)")
     p.add_argument("--stop", type=float, default=None, help="override the stop time [s]")
     p.add_argument("--step", type=float, default=None, help="override the macro step [s]")
     p.add_argument("--algorithm", choices=("jacobi", "gauss-seidel", "stabilised"), default=None)
 
 
 def _load(args):
+    from . import scenarios
+    from .components import build
     from .cosim import system
-    s = system.load(args.scenario, args.fmus)
+    path, fmu_dir = scenarios.find(args.scenario), args.fmus
+    if fmu_dir is None and scenarios.is_shipped(path):
+        fmu_dir = build.ensure(Path("fmus"))
+    s = system.load(path, fmu_dir)
     changes = {k: getattr(args, k) for k in ("stop", "step", "algorithm") if getattr(args, k) is not None}
     return s.with_changes(**changes) if changes else s
 
@@ -44,7 +51,7 @@ def _ehl_args(sub) -> None:
                        ("sliding-velocity", "u_s [m/s], friction only (default 0)"),
                        ("peklenik", "Patir-Cheng average flow with this roughness orientation "
                                     "gamma: 1 isotropic, 3/6/9 along the motion, 1/3/1/6/1/9 "
-                                    "across (default: paper 000 eq. 18, no flow factors)")):
+                                    "across (default: Soleimanian et al. 2020, eq. 18, no flow factors)")):
         p.add_argument(f"--{name}", type=_ratio if name == "peklenik" else float, default=None,
                        help=unit)
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
@@ -65,7 +72,7 @@ def _ehl_args(sub) -> None:
     p.add_argument("--floor", type=float, default=None,
                    help="load of separated samples, fraction of the largest (default 0.05)")
     p.add_argument("--roughness", type=float, default=None,
-                   help="RMS roughness [m] (default 0.45e-6, paper 000 Table 4)")
+                   help="RMS roughness [m] (default 0.45e-6, Soleimanian et al. 2020, Table 4)")
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
 
 
@@ -107,14 +114,15 @@ def main(argv: list[str] | None = None) -> int:
     _scenario_args(p)
     p.add_argument("out", type=Path, help="the .ssp file to write")
     p = sub.add_parser("diagnose", help="find, name and close the gap between a measured run and the model")
-    p.add_argument("run_dir", type=Path, help="measured run: rig.toml + data.csv (../shared/spec/measured-run.md)")
+    p.add_argument("run_dir", type=Path, help="measured run: rig.toml + data.csv (docs/measured-run.md)")
     p.add_argument("--out", type=Path, required=True, help="output folder: diagnosis.json, fit.csv, report.html, plots")
     p.add_argument("--fmus", type=Path, default=None, help="where to find or build the FMUs (default OUT/fmus)")
     p = sub.add_parser("demo", help="the main job: FMUs, stiffness curves, paper scenarios, verification")
     p.add_argument("--out", type=Path, default=Path("out/demo"))
     p.add_argument("--fmus", type=Path, default=Path("fmus"))
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
-    p = sub.add_parser("facts", help="print k, delta0, film and natural frequency of paper 000's rig")
+    sub.add_parser("scenarios", help="list the shipped scenarios")
+    p = sub.add_parser("facts", help="print k, delta0, film and natural frequency of the rig of Soleimanian et al. (2020)")
     p.add_argument("--u", type=float, default=0.29, help="feed speed [m/s] (default 0.29)")
     _ehl_args(sub)
     args = parser.parse_args(argv)
@@ -143,6 +151,9 @@ def main(argv: list[str] | None = None) -> int:
                 raise ValueError(f"need --stop > 0, got {args.stop}")
             from .demo import run_demo
             print(json.dumps(run_demo(args.out, args.fmus, args.stop), indent=2))
+        elif args.command == "scenarios":
+            from . import scenarios
+            print("\n".join(scenarios.names()))
         elif args.command == "facts":
             from .demo import rig_facts
             print(json.dumps(rig_facts(args.u), indent=2))

@@ -1,11 +1,11 @@
-"""The main job on built-in data: build the FMUs, paper 000's stiffness curves and a rig run.
+"""The main job on built-in data: build the FMUs, Soleimanian et al. 2020's stiffness curves and a rig run.
 
 1. Quasi-static stiffness K(y), lubricated (Fig. 3) and dry (Fig. 4), computed through the
    contact FMUs: each point is a fresh initialisation at displacement y (the EHL film starts at
    its steady value), K the central difference of the FMU's F_contact over y; the dry FMU's
    K_contact output is checked against it.
-2. Three scenarios of orchestration/scenarios/ through the co-simulation master, shortened to
-   ``stop`` seconds: the unloaded rig (paper 000, with friction), 9000 N at 4500 Hz lubricated
+2. Three shipped scenarios (guideway_fmu/scenarios/) through the co-simulation master, shortened to
+   ``stop`` seconds: the unloaded rig (Soleimanian et al. 2020, with friction), 9000 N at 4500 Hz lubricated
    and the same with dry contacts; results, plots and summary per run.
 3. ``guideway-fmu verify`` of the 9000 N / 4500 Hz run against the monolithic reference.
 4. ``guideway-fmu diagnose`` on a bundled measured run with a hidden pre-sliding hysteresis
@@ -22,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import scenarios  # noqa: E402
 from .components import build  # noqa: E402
 from .reference import verify  # noqa: E402
 from .cosim import plots, run, system  # noqa: E402
@@ -30,11 +31,11 @@ from .diagnose import truth, workflow  # noqa: E402
 from .physics import carriage, film, guideway  # noqa: E402
 
 RIG_SPEED = 0.29  # m/s, feed speed amplitude of the rig's bi-harmonic fit (eq. 1a)
-PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, paper 000, unloaded case
+PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, Soleimanian et al. 2020, unloaded case
 
 
 def rig_facts(u: float = RIG_SPEED) -> dict:
-    """k, preload approach, films and natural frequencies of paper 000's rig at y = 0, feed speed u."""
+    """k, preload approach, films and natural frequencies of Soleimanian et al. 2020's rig at y = 0, feed speed u."""
     g, body = guideway.Guideway(), carriage.Carriage()
     state = guideway.quasi_static_state(g, 0.0, u)
     f_u, h_u = float(state[0]), float(state[2])
@@ -82,19 +83,18 @@ def _plot_stiffness(curves, path: Path) -> None:
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     for ax, label, fig_no in zip(axes, ("lubricated", "dry"), (3, 4)):
         ax.plot(curves["y"] * 1e6, curves[f"K_{label}"] / 1e6)
-        ax.set(title=f"{label} (paper 000 Fig. {fig_no})", xlabel="y [um]")
+        ax.set(title=f"{label} (Soleimanian et al. 2020 Fig. {fig_no})", xlabel="y [um]")
     axes[0].set_ylabel("K [N/um]")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
 
-DEMO_SCENARIOS = ("paper000_unloaded", "paper000_9000N_4500Hz", "paper000_9000N_4500Hz_dry")
-VERIFIED = "paper000_9000N_4500Hz"
+DEMO_SCENARIOS = ("soleimanian2020_unloaded", "soleimanian2020_9000N_4500Hz", "soleimanian2020_9000N_4500Hz_dry")
+VERIFIED = "soleimanian2020_9000N_4500Hz"
 
 
-def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02,
-             scenarios: Path = Path("orchestration/scenarios")) -> dict:
+def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02) -> dict:
     """Build the FMUs, draw the stiffness curves, run three paper scenarios for ``stop`` seconds
     each (results, plots), verify one against the monolithic reference and diagnose the bundled
     measured run; returns the summary."""
@@ -110,7 +110,7 @@ def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02,
         "runs": {},
     }
     for name in DEMO_SCENARIOS:
-        scenario = system.load(scenarios / f"{name}.toml", fmu_dir).with_changes(stop=stop)
+        scenario = system.load(scenarios.find(name), fmu_dir).with_changes(stop=stop)
         result = run.run(scenario, out_dir / name, progress=False)
         rec = result.recording
         freq, amp = plots.spectrum(rec.time, rec.columns["Body.y"])
@@ -122,7 +122,7 @@ def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02,
                                 float(rec.columns["Contact.F_upper"].max())],
             "h_upper_range_m": [float(rec.columns["Contact.h_upper"].min()),
                                 float(rec.columns["Contact.h_upper"].max())]}
-    report = verify.verify(system.load(scenarios / f"{VERIFIED}.toml", fmu_dir).with_changes(stop=stop))
+    report = verify.verify(system.load(scenarios.find(VERIFIED), fmu_dir).with_changes(stop=stop))
     (out_dir / "verify.json").write_text(json.dumps(report, indent=2))
     summary["verify"] = {VERIFIED: {"rms_error_Contact.F_upper": report["rms_error"]["Contact.F_upper"],
                                     "wall_time_cosim_s": report["wall_time_cosim"],

@@ -84,6 +84,16 @@ def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[
     return built
 
 
+def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:
+    """Build the FMUs among ``names`` (default: all) that ``out_dir`` lacks; returns out_dir."""
+    out_dir = Path(out_dir)
+    wanted = registry.names() if names is None else list(dict.fromkeys(names))
+    missing = [n for n in wanted if not (out_dir / f"{n}.fmu").is_file()]
+    if missing:
+        build(out_dir, missing)
+    return out_dir
+
+
 def write_readme(out_dir: Path, fmus: list[Path]) -> Path:
     """Write ``out_dir/README.md``: every FMU's variables with causality, unit, start and meaning."""
     lines = ["# FMUs", "",

@@ -1,8 +1,9 @@
 """System description: components (FMUs), connections, tangents, experiment, recording, plots.
 
-Read from a TOML scenario (``orchestration/scenarios/*.toml``) and checked against each FMU's
-modelDescription before anything is instantiated; every error names the file, the table and the
-key. The format (tables and keys, all SI units)::
+Read from a TOML scenario (:func:`load`), or built in code (:class:`Builder`), and checked
+against each FMU's modelDescription before anything is instantiated; every error names the file,
+the table and the key. :func:`dump` writes a system back as TOML that :func:`load` reads to an
+equal system: the one scenario writer. The format (tables and keys, all SI units)::
 
     name = "..."                    # optional, defaults to the file stem
     description = "..."             # optional
@@ -54,10 +55,12 @@ key. The format (tables and keys, all SI units)::
 from __future__ import annotations
 
 import math
+import os
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
+import tomli_w
 from fmpy import read_model_description
 
 ALGORITHMS = ("jacobi", "gauss-seidel", "stabilised")
@@ -149,6 +152,142 @@ class System:
         return check(System(self.name, self.path, comps, self.connections, exp, self.tangents,
                             self.record, self.record_interval, self.plots, self.description),
                      str(self.path or self.name))
+
+
+# -- building and writing --------------------------------------------------------------------
+def _ref(text: str, what: str) -> tuple[str, str]:
+    instance, dot, variable = text.partition(".")
+    if not (instance and dot and variable):
+        raise ScenarioError(f"{what} must be '<instance>.<variable>', got {text!r}")
+    return instance, variable
+
+
+class Builder:
+    """A system built in code, the inverse of reading a TOML file::
+
+        b = Builder("rig", "what it shows").experiment(stop=0.2, step=2e-6)
+        b.component("Feed", "fmus/FeedKinematics.fmu", profile="biharmonic")
+        b.connect("Feed.u", "Contact.u")
+        system = b.system()          # checked against the FMUs
+        dump(b.system(check=False), "rig.toml")
+
+    Methods return the builder, so calls chain. Keys and meanings are those of the TOML format
+    (module doc). FMU paths are taken as given: :meth:`system` checks them from the working
+    directory, :func:`dump` writes a relative one as the path from the scenario file.
+    """
+
+    def __init__(self, name: str, description: str = ""):
+        self.name, self.description = name, description
+        self._experiment = Experiment()
+        self._components: dict[str, Component] = {}
+        self._connections: list[Connection] = []
+        self._tangents: list[Tangent] = []
+        self._record: tuple[str, ...] = ()
+        self._interval = 0.0
+        self._plots: dict = {}
+
+    def experiment(self, **values) -> "Builder":
+        """Set fields of the experiment (start, stop, step, algorithm, tolerance, ...)."""
+        self._experiment = Experiment(**{**self._experiment.__dict__, **values})
+        return self
+
+    def component(self, name: str, fmu, **parameters) -> "Builder":
+        """Add the instance ``name`` of the FMU file ``fmu`` with parameter (or input start)
+        values (numpy scalars become Python ones)."""
+        plain = {k: v.item() if hasattr(v, "item") else v for k, v in parameters.items()}
+        self._components[name] = Component(name, Path(fmu), plain)
+        return self
+
+    def connect(self, source: str, target: str) -> "Builder":
+        """Feed the input ``target`` ("<instance>.<input>") from the output ``source``."""
+        self._connections.append(Connection(*_ref(source, "from"), *_ref(target, "to")))
+        return self
+
+    def tangent(self, force: str, position: str, stiffness: str, to_stiffness: str,
+                velocity: str | None = None, damping: str | None = None,
+                to_damping: str | None = None, model: dict | None = None,
+                settings: dict | None = None) -> "Builder":
+        """Declare a stiff loop for the stabilised coupling (keys as in [[tangents]])."""
+        instance, force_name = _ref(force, "force")
+
+        def own(text):  # an output or input of the force's instance, or "fd"
+            return text if text in (None, "fd") else _ref(text, "tangent variable")[1]
+
+        self._tangents.append(Tangent(
+            instance, force_name, own(position), own(stiffness), _ref(to_stiffness, "to_stiffness"),
+            own(velocity), own(damping), to_damping and _ref(to_damping, "to_damping"),
+            tuple((out, _ref(target, "model")) for out, target in (model or {}).items()),
+            tuple((settings or {}).items())))
+        return self
+
+    def record(self, variables=(), interval: float = 0.0) -> "Builder":
+        """Record these "<instance>.<variable>" (default: every output) every ``interval`` [s]."""
+        self._record, self._interval = tuple(variables), interval
+        return self
+
+    def plots(self, **entries) -> "Builder":
+        """Plot lists by kind (time, spectrum, film, envelope) and their options."""
+        self._plots.update(entries)
+        return self
+
+    def system(self, path: str | Path | None = None, check_fmus: bool = True) -> System:
+        """The system; checked against the FMUs unless ``check_fmus`` is False."""
+        system = System(self.name, None if path is None else Path(path), dict(self._components),
+                        tuple(self._connections), self._experiment, tuple(self._tangents),
+                        self._record, self._interval, dict(self._plots), self.description)
+        return check(system, str(path or self.name)) if check_fmus else system
+
+
+def dump(system: System, path: str | Path, header: str = "") -> Path:
+    """Write ``system`` as a TOML scenario at ``path`` that :func:`load` reads back to an equal
+    system. An absolute FMU path is written relative to the file's folder, a relative one as it
+    is (:func:`load` reads it relative to the file). ``header``: comment lines."""
+    path = Path(path)
+    default = Experiment()
+    data = {"name": system.name}
+    if system.description:
+        data["description"] = system.description
+    data["experiment"] = {f.name: getattr(system.experiment, f.name) for f in fields(Experiment)
+                          if getattr(system.experiment, f.name) != getattr(default, f.name)}
+    data["components"] = {
+        name: {"fmu": _relative(Path(c.fmu), path.parent),
+               **({"parameters": dict(c.parameters)} if c.parameters else {})}
+        for name, c in system.components.items()}
+    if system.connections:
+        data["connections"] = [{"from": f"{c.source}.{c.output}", "to": f"{c.target}.{c.input}"}
+                               for c in system.connections]
+    if system.tangents:
+        data["tangents"] = [_tangent_table(t) for t in system.tangents]
+    record = {"variables": list(system.record)} if system.record else {}
+    if system.record_interval:
+        record["interval"] = system.record_interval
+    if record:
+        data["record"] = record
+    if system.plots:
+        data["plots"] = dict(system.plots)
+    text = "".join(f"# {line}\n" for line in header.splitlines()) + tomli_w.dumps(data)
+    path.write_text(text)
+    return path
+
+
+def _relative(fmu: Path, folder: Path) -> str:
+    return (Path(os.path.relpath(fmu, folder.resolve())) if fmu.is_absolute() else fmu).as_posix()
+
+
+def _tangent_table(t: Tangent) -> dict:
+    def own(name):
+        return name if name == "fd" else f"{t.instance}.{name}"
+
+    table = {"force": own(t.force), "position": own(t.position), "stiffness": own(t.stiffness),
+             "to_stiffness": ".".join(t.to_stiffness)}
+    if t.velocity:
+        table.update(velocity=own(t.velocity), damping=own(t.damping),
+                     to_damping=".".join(t.to_damping))
+    if t.model:
+        table["model"] = {out: ".".join(target) for out, target in t.model}
+    if t.settings:
+        table["settings"] = dict(t.settings)
+    return table
 
 
 # -- reading -------------------------------------------------------------------------------
@@ -330,7 +469,8 @@ def check(system: System, src: str) -> System:
         if v is None:
             raise fail(table, key, f"{system.components[inst].fmu.name} has no variable {var!r}")
         if causality and v.causality not in causality:
-            raise fail(table, key, f"{inst}.{var} is a {v.causality}, not an {' or '.join(causality)}")
+            raise fail(table, key, f"{inst}.{var} is {_article(v.causality)}, not "
+                                   f"{' or '.join(map(_article, causality))}")
         return v
 
     fed = {}  # (instance, input) -> what feeds it: a connection or a tangent's link
@@ -383,6 +523,10 @@ def check(system: System, src: str) -> System:
     object.__setattr__(system, "variables", variables)
     object.__setattr__(system, "feedthrough", feedthrough)
     return system
+
+
+def _article(word: str) -> str:
+    return f"{'an' if word[0] in 'aeiou' else 'a'} {word}"
 
 
 def _fits(kind: str, value) -> bool:

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..components import build
 from . import locate, regression, report, scenario
 from .candidates import BASELINE, Context, Fit, candidates_for
 from .run_io import MeasuredRun, load_run
@@ -261,7 +262,7 @@ def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
 
     # the augmented model (the baseline for none / unknown) through the FMUs
     model = winner or baseline
-    scenario.ensure_fmus(fmu_dir, [*scenario.RIG_FMUS, model.fmu])
+    build.ensure(fmu_dir, [*scenario.RIG_FMUS, model.fmu])
     replay = scenario.write_replay(ctx, out / "replay.csv")
     toml = scenario.write_scenario(
         ctx, model, out / ("augmented.toml" if winner else "baseline.toml"), replay, fmu_dir,
