@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from guideway_fmu.reference import monolithic
-from guideway_fmu.cosim import algorithms, master, system
+from guideway_fmu.cosim import algorithms, master, observers, system
 from guideway_fmu.cosim.fmu_instance import FmuInstance
 from guideway_fmu.cosim.run import run
 from guideway_fmu.physics import carriage, guideway
@@ -356,3 +356,43 @@ def test_fmu_instance_log_goes_to_the_right_instance(fmu_dir):
     assert "K_contact" not in second.log_text()
     first.close()
     second.close()
+
+
+# -- extension points: observers and algorithms --------------------------------------------------
+class _Counter(observers.Observer):
+    def __init__(self):
+        self.started_at, self.times, self.result = None, [], None
+
+    def started(self, system, bus):
+        self.started_at = system.experiment.start
+
+    def stepped(self, t, bus):
+        self.times.append(t)
+
+    def finished(self, result):
+        self.result = result
+
+
+def test_observer_sees_every_accepted_step_and_the_end(tmp_path, fmu_dir):
+    counter = _Counter()
+    s = rig(tmp_path, fmu_dir, stop=2e-4, step=1e-5, tolerance=1e-3)
+    result = master.simulate(s, observers=(counter,))
+    assert counter.started_at == 0.0 and counter.result is result
+    assert len(counter.times) == result.steps and counter.times[-1] == pytest.approx(2e-4)
+    assert all(b > a for a, b in zip(counter.times, counter.times[1:]))
+
+
+def test_a_new_algorithm_is_one_subclass_read_by_the_check_and_the_master(tmp_path, fmu_dir,
+                                                                         monkeypatch):
+    class Reversed(algorithms.GaussSeidel):  # the Gauss-Seidel order backwards: the contact first
+        def __init__(self, bus, system):
+            super().__init__(bus, system)
+            self.names = self.names[::-1]
+
+    monkeypatch.setitem(algorithms.ALGORITHMS, "reversed", Reversed)
+    Reversed.name = "reversed"
+    s = rig(tmp_path, fmu_dir, stop=1e-4, step=1e-6, algorithm="reversed")
+    result = master.simulate(s)
+    assert result.algorithm == "reversed" and result.steps == 100
+    with pytest.raises(system.ScenarioError, match="must be one of jacobi, gauss-seidel, stabilised"):
+        rig(tmp_path, fmu_dir, algorithm="unknown")

@@ -7,6 +7,8 @@ import sys
 from fractions import Fraction
 from pathlib import Path
 
+from .cosim.algorithms import ALGORITHMS
+
 
 def _scenario_args(p) -> None:
     p.add_argument("scenario", help="scenario TOML file, or the name of a shipped scenario "
@@ -16,7 +18,8 @@ def _scenario_args(p) -> None:
                         "paths (shipped scenarios: default ./fmus, built where missing)")
     p.add_argument("--stop", type=float, default=None, help="override the stop time [s]")
     p.add_argument("--step", type=float, default=None, help="override the macro step [s]")
-    p.add_argument("--algorithm", choices=("jacobi", "gauss-seidel", "stabilised"), default=None)
+    p.add_argument("--algorithm", choices=tuple(ALGORITHMS), default=None,
+                   help="override the co-simulation algorithm")
 
 
 def _load(args):

@@ -1,7 +1,11 @@
 """How macro steps are taken: Jacobi, Gauss-Seidel and the stabilised coupling for stiff loops.
 
-All three share one interface, ``step(t, h) -> (accepted, next_h)``, over a :class:`Bus` that
-moves values between FMU instances (see master.py). Inputs are held over each step (FMI 2.0).
+Each is an :class:`Algorithm`: ``step(t, h) -> (accepted, next_h)`` over a :class:`Bus` that
+moves values between FMU instances (master.py), plus class-level hooks for what it needs from the
+system beyond its connections (further links, parameters to set at initialisation, variables to
+exchange). Subclassing with a ``name`` registers an algorithm in :data:`ALGORITHMS`, the one list
+that the scenario check, the command line and the master read. Inputs are held over each step
+(FMI 2.0).
 
 * Jacobi: every instance takes its inputs from the outputs at t, then all step. This is what
   libcosim's fixed-step algorithm and fmpy's SSP runner do.
@@ -25,19 +29,31 @@ moves values between FMU instances (see master.py). Inputs are held over each st
   where a contact opens, F'' is unbounded and the force change alone would make the step
   vanish), else every instance is rolled back (get/set FMU state) and the step retried shorter;
   the next step is h * clip(0.9 sqrt(tolerance / r), 0.2, 2). An FMU that discards a step is
-  retried the same way.
+  retried the same way (next step DISCARD_SHRINK h).
 """
 from __future__ import annotations
 
 import graphlib
 import math
+from typing import TYPE_CHECKING
 
 from fmpy.fmi1 import FMICallException
 
-from .system import System
+if TYPE_CHECKING:
+    from .system import System
+
+#: name -> algorithm class; filled by subclassing :class:`Algorithm` with a ``name``
+ALGORITHMS: dict[str, type["Algorithm"]] = {}
+
+# Step-size control of the stabilised coupling (module doc)
+SAFETY = 0.9  # next h = h * SAFETY sqrt(tolerance / r): aim a little below the tolerance
+SHRINK_LIMIT = 0.2  # never shrink by more than this factor in one step ...
+GROW_LIMIT = 2.0  # ... nor grow by more than this one
+DISCARD_SHRINK = 0.25  # factor of the retry after an FMU discarded (or failed) a step
+DEFECT_FLOOR = 0.01  # the defect is measured against at least 1 % of the largest force seen
 
 
-def order(system: System) -> list[str]:
+def order(system: "System") -> list[str]:
     """Gauss-Seidel order: sources before consumers. A loop is cut at a feedthrough output:
     the instance whose connected output is a state (no feedthrough from its inputs) steps
     first, so the one that feeds through sees the others' outputs at the end of the step."""
@@ -54,11 +70,46 @@ def order(system: System) -> list[str]:
     return list(graphlib.TopologicalSorter(feeds).static_order())
 
 
-class Jacobi:
+class Algorithm:
+    """How macro steps are taken; a subclass with a ``name`` is registered in ALGORITHMS."""
+
+    name = ""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if cls.name:
+            ALGORITHMS[cls.name] = cls
+
+    def __init__(self, bus, system: "System"):
+        self.bus = bus
+
+    @classmethod
+    def links(cls, system: "System") -> dict:
+        """Further feeds {(instance, output or bus key): (instance, input)} besides the
+        connections, written to the inputs before each step."""
+        return {}
+
+    @classmethod
+    def settings(cls, system: "System") -> dict:
+        """{instance: {parameter: value}} to set at initialisation, after the scenario's."""
+        return {}
+
+    @classmethod
+    def exchanged(cls, system: "System") -> set:
+        """Further (instance, output) to read after every step of their instance."""
+        return set()
+
+    def step(self, t: float, h: float) -> tuple[bool, float]:
+        """Advance every instance from t by h [s]; (accepted, next step [s])."""
+        raise NotImplementedError
+
+
+class Jacobi(Algorithm):
     name = "jacobi"
 
-    def __init__(self, bus, system: System):
-        self.bus, self.names = bus, list(system.components)
+    def __init__(self, bus, system: "System"):
+        super().__init__(bus, system)
+        self.names = list(system.components)
 
     def step(self, t: float, h: float):
         bus = self.bus
@@ -71,11 +122,12 @@ class Jacobi:
         return True, h
 
 
-class GaussSeidel:
+class GaussSeidel(Algorithm):
     name = "gauss-seidel"
 
-    def __init__(self, bus, system: System):
-        self.bus, self.names = bus, order(system)
+    def __init__(self, bus, system: "System"):
+        super().__init__(bus, system)
+        self.names = order(system)
 
     def step(self, t: float, h: float):
         bus = self.bus
@@ -89,7 +141,20 @@ class GaussSeidel:
 class Stabilised(GaussSeidel):
     name = "stabilised"
 
-    def __init__(self, bus, system: System):
+    @classmethod
+    def links(cls, system):
+        return tangent_links(system.tangents)
+
+    @classmethod
+    def settings(cls, system):
+        return tangent_settings(system.tangents)
+
+    @classmethod
+    def exchanged(cls, system):
+        return ({src for src in tangent_links(system.tangents) if src[1] in system.variables[src[0]]}
+                | {(t.instance, t.force) for t in system.tangents})
+
+    def __init__(self, bus, system: "System"):
         super().__init__(bus, system)
         exp = system.experiment
         self.tangents = [Tangent(bus, t) for t in system.tangents]
@@ -109,11 +174,12 @@ class Stabilised(GaussSeidel):
                 if saved is None or h <= self.min_step:
                     raise
                 bus.restore(saved)
-                return False, max(0.25 * h, self.min_step)
+                return False, max(DISCARD_SHRINK * h, self.min_step)
             if saved is None:
                 return True, h
             ratio = max((tg.defect(*b) for tg, b in zip(self.tangents, before)), default=0.0)
-            grow = min(2.0, max(0.2, 0.9 * math.sqrt(self.tolerance / ratio))) if ratio > 0 else 2.0
+            grow = (min(GROW_LIMIT, max(SHRINK_LIMIT, SAFETY * math.sqrt(self.tolerance / ratio)))
+                    if ratio > 0 else GROW_LIMIT)
             next_h = min(self.max_step, max(self.min_step, h * grow))
             if ratio <= self.tolerance or h <= self.min_step:
                 return True, next_h
@@ -209,7 +275,3 @@ class Tangent:
         d = abs(f1 - f0 - predicted)
         return d / scale if scale > 0 else (0.0 if d == 0 else math.inf)
 
-
-DEFECT_FLOOR = 0.01  # the defect is measured against at least 1 % of the largest force seen
-
-ALGORITHMS = {a.name: a for a in (Jacobi, GaussSeidel, Stabilised)}

@@ -1,8 +1,9 @@
 """The co-simulation master: instantiate a system's FMUs, step them with an algorithm, record.
 
 ``simulate(system)`` is the whole run; the pieces follow libcosim's split: the :class:`Bus`
-moves values between instances (execution), algorithms.py decides how steps are taken, the
-Recorder (recording.py) observes. The master talks to FMUs only through FMI (fmpy), so it runs
+moves values between instances (execution), algorithms.py decides how steps are taken, and
+observers (observers.py: the recorder, the progress bar, any the caller adds) are notified at
+the start, after every accepted step and at the end. The master talks to FMUs only through FMI (fmpy), so it runs
 FMUs this project did not build (Real, Integer, Boolean and Enumeration connections).
 """
 from __future__ import annotations
@@ -13,14 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
-from tqdm import tqdm
 
-from .algorithms import ALGORITHMS, order, tangent_links, tangent_settings
+from .algorithms import ALGORITHMS, order
 from .fmu_instance import FmuInstance
+from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording
 from .system import System
-
-PROGRESS_EVERY = 2000  # macro steps between progress-bar updates
 
 
 @dataclass
@@ -60,8 +59,8 @@ class Bus:
 
     ``exchanged`` variables are read after every step of their instance, ``observed`` ones
     (recorded only) when :meth:`observe` is called, before a sample is recorded. ``links`` are
-    further (source key -> (instance, input)) feeds, such as the tangents of the stabilised
-    algorithm, written together with the connections.
+    further (source key -> (instance, input)) feeds that an algorithm adds (``Algorithm.links``),
+    written together with the connections.
     """
 
     def __init__(self, system: System, instances: dict[str, FmuInstance], exchanged: set,
@@ -151,22 +150,21 @@ def _recorded(system: System) -> list[str]:
             for v, var in vs.items() if var.causality == "output" and var.type != "String"]
 
 
-def simulate(system: System, progress: bool = False) -> Result:
+def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = ()) -> Result:
     """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
-    an FMU fails a step that cannot be retried."""
+    an FMU fails a step that cannot be retried. ``observers`` are notified besides the recorder
+    (and the progress bar when ``progress``)."""
     exp = system.experiment
     algorithm_class = ALGORITHMS[exp.algorithm]
     record = _recorded(system)
-    observed = {tuple(r.split(".", 1)) for r in record}
-    exchanged = {(c.source, c.output) for c in system.connections}
-    stabilised = exp.algorithm == "stabilised"
-    links = tangent_links(system.tangents) if stabilised else {}
-    settings = tangent_settings(system.tangents) if stabilised else {}
-    exchanged |= {src for src in links if src[1] in system.variables[src[0]]}
-    exchanged |= {(t.instance, t.force) for t in system.tangents}
-    instances: dict[str, FmuInstance] = {}
+    links = algorithm_class.links(system)
+    exchanged = ({(c.source, c.output) for c in system.connections}
+                 | algorithm_class.exchanged(system))
+    settings = algorithm_class.settings(system)
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
                         system.record_interval)
+    watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
+    instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
     try:
         for name in order(system):  # initialise sources first: inputs at t0 from their outputs
@@ -176,7 +174,7 @@ def simulate(system: System, progress: bool = False) -> Result:
             except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
                 raise SimulationError(f"{system.name}: cannot instantiate {name} from {comp.fmu}: "
                                       f"{exc}", result) from exc
-        bus = Bus(system, instances, exchanged, observed, links)
+        bus = Bus(system, instances, exchanged, {tuple(r.split(".", 1)) for r in record}, links)
         for name in order(system):
             inst = instances[name]
             inst.fmu.setupExperiment(startTime=exp.start, stopTime=exp.stop)
@@ -189,12 +187,10 @@ def simulate(system: System, progress: bool = False) -> Result:
             bus.read_outputs(name)
         for name in instances:
             bus.read_outputs(name)
-        bus.observe()
         result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
-        algorithm = algorithm_class(bus, system)
-        row_keys = [tuple(r.split(".", 1)) for r in record]
-        recorder.sample(exp.start, [bus.values[k] for k in row_keys], force=True)
-        _run(exp, algorithm, bus, recorder, row_keys, result, progress)
+        for w in watchers:
+            w.started(system, bus)
+        _run(exp, algorithm_class(bus, system), bus, watchers, result)
     except FMICallException as exc:
         failing = getattr(exc, "instance", None)
         logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
@@ -217,12 +213,10 @@ def _write_available(bus: Bus, name: str) -> None:
             bus.writer(name, inp)([bus.values[src]])
 
 
-def _run(exp, algorithm, bus, recorder, row_keys, result, progress) -> None:
+def _run(exp, algorithm, bus, watchers, result) -> None:
     t, h, span = exp.start, exp.step, exp.stop - exp.start
     eps = 1e-9 * exp.step
     fmi0, wall0 = bus.fmi_time(), time.perf_counter()
-    bar = tqdm(total=span, unit="s", disable=not progress, desc=result.system,
-               bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]")
     steps = rejected = 0
     gc_was_on = gc.isenabled()
     gc.disable()  # the loop makes no reference cycles; full collections would cost ms each
@@ -237,19 +231,16 @@ def _run(exp, algorithm, bus, recorder, row_keys, result, progress) -> None:
             steps += 1
             t = exp.start + span if exp.stop - (t + h_try) <= eps else t + h_try
             h = h_next if exp.tolerance > 0 else exp.step
-            if recorder.due(t) or t >= exp.stop - eps:
-                bus.observe()
-                recorder.sample(t, [bus.values[k] for k in row_keys], force=True)
-            if steps % PROGRESS_EVERY == 0:
-                bar.update(t - exp.start - bar.n)
-        bar.update(span - bar.n)
+            for w in watchers:
+                w.stepped(t, bus)
     finally:
         if gc_was_on:
             gc.enable()
-        bar.close()
         result.steps, result.rejected = steps, rejected
         result.wall_time = time.perf_counter() - wall0
         result.fmi_time = bus.fmi_time() - fmi0
+        for w in watchers:
+            w.finished(result)
 
 
 def _parameters(inst: FmuInstance) -> dict:

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .observers import Observer
+
 
 @dataclass
 class Recording:
@@ -31,23 +33,33 @@ class Recording:
         return path
 
 
-class Recorder:
-    """Collects rows of values at accepted communication points, at most one per ``interval``."""
+class Recorder(Observer):
+    """Collects rows of values at the start, at accepted communication points at most one per
+    ``interval`` [s], and at the stop time."""
 
     def __init__(self, names: list[str], units: dict[str, str], interval: float = 0.0):
         self.names, self.units, self.interval = names, units, interval
+        self._keys = [tuple(n.split(".", 1)) for n in names]
         self._time = array("d")  # flat arrays: nothing for the garbage collector to traverse
         self._rows = array("d")
         self._next = -np.inf
+        self._last = np.inf
 
-    def due(self, t: float) -> bool:
-        return t >= self._next
+    def started(self, system, bus):
+        exp = system.experiment
+        self._last = exp.stop - 1e-9 * exp.step  # a step ending beyond this is the last
+        self._sample(exp.start, bus)
 
-    def sample(self, t: float, row: list[float], force: bool = False) -> None:
-        if force or t >= self._next:
-            self._time.append(t)
-            self._rows.extend(row)
-            self._next = t + self.interval * (1 - 1e-9)
+    def stepped(self, t, bus):
+        if t >= self._next or t >= self._last:
+            self._sample(t, bus)
+
+    def _sample(self, t: float, bus) -> None:
+        bus.observe()
+        values = bus.values
+        self._time.append(t)
+        self._rows.extend([values[k] for k in self._keys])
+        self._next = t + self.interval * (1 - 1e-9)
 
     def recording(self) -> Recording:
         data = np.array(self._rows, dtype=float).reshape(len(self._time), len(self.names))

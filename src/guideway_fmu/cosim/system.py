@@ -12,7 +12,8 @@ equal system: the one scenario writer. The format (tables and keys, all SI units
     start = 0.0                     # s
     stop = 0.2                      # s
     step = 2e-6                     # s, macro step (the initial one for adaptive algorithms)
-    algorithm = "stabilised"        # "jacobi", "gauss-seidel" or "stabilised"
+    algorithm = "stabilised"        # a name of cosim/algorithms.py ALGORITHMS: "jacobi",
+                                    #   "gauss-seidel" or "stabilised"
     tolerance = 0.0                 # stabilised only: > 0 turns on step-size control (module doc
     min_step = 1e-8                 #   of stabilised.py); min_step/max_step bound the step [s]
     max_step = 1e-4
@@ -63,7 +64,6 @@ from pathlib import Path
 import tomli_w
 from fmpy import read_model_description
 
-ALGORITHMS = ("jacobi", "gauss-seidel", "stabilised")
 PLOT_KINDS = ("time", "spectrum", "film", "envelope")
 PLOT_OPTIONS = ("skip", "f_max", "window")  # s, Hz, s: see cosim/plots.py
 
@@ -422,8 +422,10 @@ def check(system: System, src: str) -> System:
     def fail(table, key, message):
         return ScenarioError(f"{src}: [{table}] key '{key}': {message}")
 
+    from .algorithms import ALGORITHMS  # the registry; algorithms.py reads systems
     if exp.algorithm not in ALGORITHMS:
-        raise fail("experiment", "algorithm", f"must be one of {ALGORITHMS}, got {exp.algorithm!r}")
+        raise fail("experiment", "algorithm",
+                   f"must be one of {', '.join(ALGORITHMS)}, got {exp.algorithm!r}")
     for key in ("start", "stop", "step", "tolerance", "min_step", "max_step"):
         value = getattr(exp, key)
         if math.isnan(value) or (key != "max_step" and not math.isfinite(value)):
