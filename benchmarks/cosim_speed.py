@@ -1,6 +1,6 @@
 """Wall time and accuracy of the co-simulation algorithms against the monolithic reference.
 
-Paper 000 at 9000 N / 4500 Hz over one feed cycle (0.2 s), all measured in one run:
+Soleimanian et al. (2020) at 9000 N / 4500 Hz over one feed cycle (0.2 s), all measured in one run:
 
 (a) our stabilised master at the scenario's step;
 (b) our Jacobi and Gauss-Seidel at the largest stable step of STEPS (stable: the upper-row load

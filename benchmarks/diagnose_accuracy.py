@@ -11,6 +11,7 @@ by default) and, unless --no-emps, the results on the two EMPS records.
 from __future__ import annotations
 
 import argparse
+import os
 import json
 import subprocess
 import sys
@@ -63,6 +64,9 @@ def main(argv=None) -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--out", type=Path, default=Path("out/diagnose_accuracy"))
     parser.add_argument("--no-emps", action="store_true")
+    parser.add_argument("--data", type=Path, default=os.environ.get("GUIDEWAY_FMU_DATA"),
+                        help="folder holding emps-identification/ and emps-validation/ "
+                             "(default: $GUIDEWAY_FMU_DATA; without it the EMPS records are skipped)")
     args = parser.parse_args(argv)
     fmus = args.out / "fmus"
     from guideway_fmu.components.build import ensure
@@ -104,9 +108,9 @@ def main(argv=None) -> None:
     if seconds:
         print(f"diagnose wall time per {args.samples}-sample run ({args.jobs} jobs on the machine): "
               f"median {np.median(seconds):.1f} s, max {np.max(seconds):.1f} s")
-    if not args.no_emps:
+    if not args.no_emps and args.data is not None:
         for name in ("emps-identification", "emps-validation"):
-            d = child(EMPS, Path("/work/shared/data/real") / name, args.out / name, fmus)
+            d = child(EMPS, Path(args.data) / name, args.out / name, fmus)
             if "error" in d:
                 print(f"{name}: {d['error']}")
                 continue

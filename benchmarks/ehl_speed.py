@@ -1,6 +1,6 @@
 """Wall time of the mixed-EHL solver (physics/ehl) against a dense-matrix Newton baseline.
 
-Steady smooth line contact at W = 1e-4, U = 1e-11, G = 4500 (paper 000's check point) on
+Steady smooth line contact at W = 1e-4, U = 1e-11, G = 4500 (Soleimanian et al.'s check point) on
 N = 513, 1025 and 2049 nodes, all measured in one run (wall time: the least of REPEAT runs):
 
 (a) the solver as shipped: nested iteration from the Hertz start, Newton-Krylov steps

@@ -82,7 +82,7 @@ def run(fmus: Path, stop: float, explicit: bool, csv_path: Path) -> int:
         for inst in instances:
             inst.fmu.setupExperiment(startTime=0.0, stopTime=stop)
             inst.fmu.enterInitializationMode()
-        # Feed keeps its defaults: the rig's bi-harmonic feed at 5 Hz (paper 000 eq. 1a)
+        # Feed keeps its defaults: the rig's bi-harmonic feed at 5 Hz (Soleimanian et al. 2020, eq. 1a)
         feed.fmu.exitInitializationMode()
         body.set(load_amplitude=9000.0, load_frequency=4500.0)  # N, Hz: harmonic external load
         body.fmu.exitInitializationMode()

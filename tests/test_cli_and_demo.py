@@ -1,4 +1,6 @@
 import json
+import subprocess
+import sys
 import zipfile
 from pathlib import Path
 
@@ -77,8 +79,13 @@ def test_cli_run_bad_scenario_is_a_clear_error(tmp_path, capsys):
 
 
 @pytest.mark.slow
-def test_demo_main_job_end_to_end(tmp_path):
-    summary = demo.run_demo(tmp_path / "demo", tmp_path / "fmus", stop=2e-3, scenarios=SCENARIOS)
+def test_demo_main_job_end_to_end_from_another_directory(tmp_path):
+    done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "demo", "--out", "demo",
+                           "--stop", "2e-3"], cwd=tmp_path, capture_output=True, text=True,
+                          timeout=900)
+    assert done.returncode == 0, done.stderr[-3000:]
+    summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
+    assert (tmp_path / "fmus" / "ContactEHL.fmu").is_file()
     assert set(summary["runs"]) == set(demo.DEMO_SCENARIOS)
     assert summary["verify"]["soleimanian2020_9000N_4500Hz"]["rms_error_Contact.F_upper"] < 0.01
     assert (tmp_path / "demo" / "soleimanian2020_9000N_4500Hz_dry" / "spectrum.png").exists()

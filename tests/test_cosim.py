@@ -223,7 +223,7 @@ def test_convergence_stabilised_error_falls_with_the_step(tmp_path, fmu_dir):
 
 
 def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_20x(fmu_dir):
-    # Paper 000, 9000 N at 2500 Hz (the rows lift off every cycle), 10 ms at the scenario's 2 us,
+    # Soleimanian et al. (2020), 9000 N at 2500 Hz (the rows lift off every cycle), 10 ms at the scenario's 2 us,
     # against the monolithic SciPy reference: the stabilised coupling with the contact's force
     # law (tangent `model`, films interpolated over the body's step) against the linear tangent
     # alone. Measured: 4.6e-5 against 9.2e-4 of the F_upper range.

@@ -1,4 +1,5 @@
-"""The workflow on the real EMPS records (../shared/data/real/), through the command line.
+"""The workflow on the real EMPS records (found through GUIDEWAY_FMU_DATA, conftest.py), through the
+command line.
 
 Independent reference: Janot, Gautier & Brunot (2019) identify the EMPS axis with the inverse
 dynamic model and least squares on the same data: M = 95.1 kg (the rig.toml's mass), viscous
@@ -18,15 +19,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import real_data_folder
+
 from guideway_fmu.physics.friction_effects import stribeck_friction
 
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
 
-REAL = Path(__file__).resolve().parents[2] / "shared" / "data" / "real"
+REAL = real_data_folder()
 PUBLISHED = {"viscous": 203.5, "coulomb": 20.39, "offset": -3.16}
 
 
-@pytest.mark.skipif(not (REAL / "emps-validation").is_dir(), reason="EMPS data not present")
+@pytest.mark.skipif(not (REAL / "emps-validation").is_dir(),
+                    reason=f"EMPS data not present in {REAL} (set GUIDEWAY_FMU_DATA)")
 def test_emps_validation_viscous_and_coulomb_match_published_identification(fmu_dir, tmp_path):
     out = tmp_path / "out"
     done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "diagnose",

@@ -1,5 +1,5 @@
 """The discrepancy workflow end to end on synthetic runs with hidden effects (diagnose/truth.py):
-the named effect, diagnosis.json and fit.csv exactly as /work/shared/spec/measured-run.md says,
+the named effect, diagnosis.json and fit.csv exactly as docs/measured-run.md says,
 the report, and the refusals. The diagnoses run in one child process (each co-simulates)."""
 from __future__ import annotations
 

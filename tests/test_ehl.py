@@ -14,7 +14,7 @@ from guideway_fmu.physics import ehl
 from guideway_fmu.physics import greenwood_tripp as gt
 from guideway_fmu.physics.ehl import discretisation, flow_factors
 
-CHECK_POINT = (1e-4, 1e-11, 4500.0)  # paper 000, Figs. 9-10
+CHECK_POINT = (1e-4, 1e-11, 4500.0)  # Soleimanian et al. (2020), Figs. 9-10
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""Checks of the line-contact film laws and the squeeze bracket of paper 000 eqs. 4-5."""
+"""Checks of the line-contact film laws and the squeeze bracket of Soleimanian et al. (2020) eqs. 4-5."""
 import dataclasses
 import math
 
@@ -7,7 +7,7 @@ import pytest
 
 from guideway_fmu.physics import film
 
-EXTRAPOLATED = film.LineContact()  # paper 000 Tables 2-3
+EXTRAPOLATED = film.LineContact()  # Soleimanian et al. (2020) Tables 2-3
 PAN_HAMROCK = film.LineContact(model="pan_hamrock")
 LOAD = 115.0  # N, preload per roller of the default guideway
 SPEED = 0.29  # m/s, amplitude of the paper's feed velocity (A_1 = 0.2919)

@@ -34,7 +34,7 @@ STATUS_ERROR = 3  # status of the log messages that explain a discarded step
 NAN = float("nan")
 
 # -- hand values -------------------------------------------------------------------------------
-# Default guideway (paper 000 Table 2): N = 20 rollers per groove, 4 grooves, theta = 45 deg,
+# Default guideway (Soleimanian et al. 2020, Table 2): N = 20 rollers per groove, 4 grooves, theta = 45 deg,
 # preload F0 = 9200 N shared by all 4N rollers, roller length l = 8 mm; Palmgren's deflection of
 # one line contact, delta[mm] = 3.84e-5 Q^0.9 / l[mm]^0.8, two contacts in series per roller.
 ROLLERS = 20

@@ -10,7 +10,7 @@ from guideway_fmu.physics.greenwood_tripp import Surface
 PARAMS = fr.MixedFrictionParams()
 LOAD = 115.0  # N per roller
 
-# Hand values for one 115 N contact with the default (paper 000 Table 2/3) parameters:
+# Hand values for one 115 N contact with the default (Soleimanian et al. 2020, Table 2/3) parameters:
 # w' = 115 / 8e-3 = 14375 N/m, b = sqrt(8 w' R / (pi E')) = sqrt(8 * 14375 * 2.5e-3 / (pi * 2e11))
 # = 2.13909e-5 m, A = 2 b l = 3.42254e-7 m^2, p_mean = 115 / A = 3.36007e8 Pa,
 # tau_L = 2e6 + 0.047 * 3.36007e8 = 1.77923e7 Pa.

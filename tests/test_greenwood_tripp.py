@@ -1,4 +1,4 @@
-"""Checks of the Greenwood-Tripp functions against quadrature, closed values and paper 000."""
+"""Checks of the Greenwood-Tripp functions against quadrature, closed values and Soleimanian et al. (2020)."""
 import math
 import warnings
 

@@ -1,4 +1,4 @@
-"""Checks of the four-row guideway contact mechanics (paper 000 eqs. 1b, 2, 3, 6-14)."""
+"""Checks of the four-row guideway contact mechanics (Soleimanian et al. 2020, eqs. 1b, 2, 3, 6-14)."""
 import dataclasses
 import math
 
@@ -9,7 +9,7 @@ from guideway_fmu.physics import carriage, film
 from guideway_fmu.physics import guideway as gw
 from guideway_fmu.physics.roller_contact import contact_force
 
-GUIDEWAY = gw.Guideway()  # paper 000 Table 2, INA RUE45-E
+GUIDEWAY = gw.Guideway()  # Soleimanian et al. (2020) Table 2, INA RUE45-E
 SPEED = 0.29  # m/s, feed velocity amplitude of the paper (A_1 = 0.2919)
 # Palmgren k for l = 8 mm (see test_roller_contact.py), Q0 = 9200 / (4 * 20) = 115 N,
 # delta0 = (115 / 5.10388e8)^0.9 = (2.253189e-7)^0.9 = 1.041160e-6 m.
@@ -39,7 +39,7 @@ def central_difference_stiffness(g, y, u, lubricated, dy=1e-10):
 
 
 def eq14_stiffness(g, y):
-    """Paper 000 eq. 14 (dry, theta = 45 deg): K = (10/9) N k (delta_U^(1/9) + delta_L^(1/9))."""
+    """Soleimanian et al. (2020) eq. 14 (dry, theta = 45 deg): K = (10/9) N k (delta_U^(1/9) + delta_L^(1/9))."""
     d_upper = max(g.delta0 + y / (2 * math.sin(g.contact_angle)), 0.0)  # eq. 3 without film
     d_lower = max(g.delta0 - y / (2 * math.sin(g.contact_angle)), 0.0)
     return 10 / 9 * g.rollers_per_groove * g.k * (d_upper ** (1 / 9) + d_lower ** (1 / 9))
@@ -109,7 +109,7 @@ def test_row_approach_published_formula_eq3_at_45_degrees(y):
 
 
 def test_natural_frequency_published_number():
-    # Paper 000: f_n = sqrt(K / M) / (2 pi) = 6590 Hz for the unloaded, lubricated guideway.
+    # Soleimanian et al. (2020): f_n = sqrt(K / M) / (2 pi) = 6590 Hz for the unloaded, lubricated guideway.
     stiffness = gw.quasi_static_stiffness(GUIDEWAY, 0.0, SPEED, lubricated=True)
     f_n = math.sqrt(stiffness / carriage.Carriage().mass) / (2 * math.pi)
     assert f_n == pytest.approx(6590.0, rel=0.01)

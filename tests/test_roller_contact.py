@@ -1,4 +1,4 @@
-"""Checks of the roller contact law F = k delta^(10/9) (paper 000, eq. 2) and Palmgren's k."""
+"""Checks of the roller contact law F = k delta^(10/9) (Soleimanian et al. 2020, eq. 2) and Palmgren's k."""
 import numpy as np
 import pytest
 
@@ -6,7 +6,7 @@ from guideway_fmu.physics import guideway
 from guideway_fmu.physics import roller_contact as rc
 from guideway_fmu.physics.roller_contact import OpposedRows
 
-ROLLER_LENGTH = 8.0e-3  # m, paper 000 Table 2
+ROLLER_LENGTH = 8.0e-3  # m, Soleimanian et al. (2020) Table 2
 # Palmgren by hand, two contacts in series, l = 8 mm:
 # delta[mm] = 2 * 3.84e-5 Q^0.9 / 8^0.8 = 7.68e-5 / 5.278032 Q^0.9 = 1.455088e-5 Q^0.9,
 # so Q = (1e3 delta[m] / 1.455088e-5)^(1/0.9) = k delta^(10/9), k = (6.872437e7)^(1/0.9) = 5.10388e8.

@@ -1,10 +1,10 @@
 """Explicit (full numerical) EHL analyses: one roller contact given on the command line
 (``guideway-fmu ehl``) and the passive analysis of a recorded co-simulation at chosen instants
-(``guideway-fmu ehl-cycle``, paper 000 Figs. 32-35). SI units unless a name says otherwise.
+(``guideway-fmu ehl-cycle``, Soleimanian et al. (2020) Figs. 32-35). SI units unless a name says otherwise.
 
 Why the cycle analysis is a post-processor and not an FMU
 ---------------------------------------------------------
-In paper 000 the dynamics runs with an analytical film ("implicit" tribology) and the numerical
+In Soleimanian et al. (2020) the dynamics runs with an analytical film ("implicit" tribology) and the numerical
 EHL solution is applied afterwards to the recorded contact load ("explicit and passive"). Nothing
 flows back from the detailed contact to the dynamics, so an FMU in the loop would compute the
 same numbers while the co-simulation runs. It would also cost far more: one solution takes
@@ -65,8 +65,8 @@ from ..physics import checks
 from ..physics.ehl import (EHLConvergenceError, EHLResult, LineContactEHL, flow_factors,
                           pan_hamrock, solve_steady, solve_transient, solver)
 
-RADIUS = 2.5e-3  # m, default reduced radius of ``ehl``: paper 000's roller on a flat raceway
-TABLE4_ROUGHNESS = 0.45e-6  # m, composite RMS roughness of paper 000 Table 4
+RADIUS = 2.5e-3  # m, default reduced radius of ``ehl``: Soleimanian et al.'s roller on a flat raceway
+TABLE4_ROUGHNESS = 0.45e-6  # m, composite RMS roughness of Soleimanian et al. (2020) Table 4
 QUASI_STEADY = 0.01  # relative change of load and u_m over the history below which steady holds
 DEFAULT_FLOOR = 0.05  # separated samples: fraction of the march's largest load
 MAX_HISTORY_SAMPLES = 500  # cap of the default history (cost ~0.1-0.3 s per sample)
@@ -163,7 +163,7 @@ def format_point(d: dict) -> str:
         ("load w'", f"{d['load']:.4g} N/m"),
         ("entrainment velocity u_m", f"{d['entrainment_velocity']:.4g} m/s"),
         ("radius R, roughness", f"{d['radius']:.4g} m, {d['roughness']:.3g} m"),
-        ("Reynolds equation", "paper 000 eq. 18" if d["peklenik"] is None else
+        ("Reynolds equation", "Soleimanian et al. (2020) eq. 18" if d["peklenik"] is None else
          f"Patir-Cheng average flow, gamma = {d['peklenik']:.4g}"),
         ("Hertz half-width b, p_H", f"{d['half_width'] * 1e6:.4g} um, {d['hertz_pressure'] * 1e-9:.4g} GPa"),
         ("central film h_c (H_c)", f"{d['h_c'] * 1e9:.4g} nm ({d['H_c']:.4g}; Pan-Hamrock "

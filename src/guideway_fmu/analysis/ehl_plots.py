@@ -1,4 +1,4 @@
-"""Plots of the numerical EHL solutions: pressure and film against x/b (paper 000 Figs. 9-10,
+"""Plots of the numerical EHL solutions: pressure and film against x/b (Soleimanian et al. 2020, Figs. 9-10,
 33, 35) and a contact-load history with the analysed instants marked (Figs. 32, 34).
 
 Drawn on matplotlib's Agg canvas without pyplot, like :mod:`.cosim.plots`: the caller's backend

@@ -1,4 +1,4 @@
-"""Reading and checking a measured run (format: /work/shared/spec/measured-run.md, version 1).
+"""Reading and checking a measured run (format: docs/measured-run.md, version 1).
 
 :func:`load_run` returns a :class:`MeasuredRun` or raises FileNotFoundError / ValueError with one
 message naming the file and the row, column, section or key that is wrong. Rows are numbered as

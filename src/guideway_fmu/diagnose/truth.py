@@ -1,7 +1,7 @@
 """Truth-model generator: synthetic measured runs with one hidden effect, for testing the workflow.
 
 A run is a directory with rig.toml and data.csv in the measured-run format, version 1
-(/work/shared/spec/measured-run.md). The rig is a ``horizontal_drive`` positioning axis under
+(docs/measured-run.md). The rig is a ``horizontal_drive`` positioning axis under
 closed-loop position control; the user's baseline is ``[model] friction = "coulomb"``,
 ``contact = "dry_hertz"`` with the moving mass stated in ``[rig]``. The recorded drive force is
 

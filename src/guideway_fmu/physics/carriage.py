@@ -49,7 +49,7 @@ class Carriage:
 
 @dataclass(frozen=True)
 class ExternalLoad:
-    """F_e(t) = static + amplitude sin(2 pi frequency t + phase) [N] (paper 000, eq. 1b)."""
+    """F_e(t) = static + amplitude sin(2 pi frequency t + phase) [N] (Soleimanian et al. 2020, eq. 1b)."""
 
     static: float = 0.0  # N
     amplitude: float = 0.0  # N

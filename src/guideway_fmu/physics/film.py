@@ -2,7 +2,7 @@
 
 Two film laws, both power laws in the roller load F, h = C(u) * F^(-m):
 
-* ``extrapolated`` (paper 000 eqs. 4-5, after Mohammadpour et al.):
+* ``extrapolated`` (Soleimanian et al. 2020, eqs. 4-5, after Mohammadpour et al.):
   h = R * 13.924 Fbar^-0.045 U^0.647 G^0.46 * (1 - 0.75 exp(132 h_dot / u)),
   Fbar = F / (E' R l), U = mu0 |u| / (E' R) with u the feed velocity as published, G = alpha E'.
   With no squeeze (h_dot = 0) the bracket is 0.25: the paper's eq. 11 carries that 0.25.
@@ -54,7 +54,7 @@ _LAWS = {  # coefficient, exponents of (Fbar, U, G), velocity used in U as a fra
 
 @dataclass(frozen=True)
 class LineContact:
-    """What the film law needs of one roller-raceway contact (paper 000 Tables 2 and 3)."""
+    """What the film law needs of one roller-raceway contact (Soleimanian et al. 2020, Tables 2 and 3)."""
 
     radius: float = 2.5e-3  # m, roller radius
     length: float = 8.0e-3  # m, roller length
@@ -110,7 +110,7 @@ def unsqueezed_film(contact: LineContact, load, u):
 
 
 def squeeze_factor(h_dot, u, regularised: bool = True):
-    """The bracket 1 - 0.75 exp(132 h_dot / u) of paper 000 eq. 4.
+    """The bracket 1 - 0.75 exp(132 h_dot / u) of Soleimanian et al. (2020) eq. 4.
 
     ``regularised=False`` evaluates the published expression literally (singular at u = 0,
     negative for fast film growth); the default uses |u| and clips the exponent (module doc).

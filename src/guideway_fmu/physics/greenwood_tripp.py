@@ -1,7 +1,7 @@
 """Greenwood-Tripp contact of two nominally flat rough surfaces, SI units.
 
 Asperity heights are Gaussian with composite RMS roughness sigma; lambda = h / sigma is
-the film ratio. Paper 000, eqs. 16-17 (asperity pressure) and 24-26 (asperity load and area).
+the film ratio. Soleimanian et al. (2020), eqs. 16-17 (asperity pressure) and 24-26 (asperity load and area).
 """
 from __future__ import annotations
 
@@ -49,7 +49,7 @@ def _fit(coefficients, lam):
 
 
 def f52_polynomial(lam):
-    """Published fifth-order fit of F_5/2 (paper 000 eq. 17), 0 for lambda > 3.
+    """Published fifth-order fit of F_5/2 (Soleimanian et al. 2020, eq. 17), 0 for lambda > 3.
 
     Kept only to reproduce and compare the published results. Within 0.01 of the exact
     function for lambda <= 2, but with these 3-digit coefficients it has a minimum at
@@ -61,7 +61,7 @@ def f52_polynomial(lam):
 
 
 def f2_polynomial(lam):
-    """Published fifth-order fit of F_2 (paper 000 eq. 26), 0 for lambda > 3.
+    """Published fifth-order fit of F_2 (Soleimanian et al. 2020, eq. 26), 0 for lambda > 3.
 
     Kept only to reproduce and compare the published results. Within 0.01 of the exact
     function for lambda <= 2, but with these 3-digit coefficients it is negative (a negative
@@ -74,7 +74,7 @@ def f2_polynomial(lam):
 
 @dataclass(frozen=True)
 class Surface:
-    """Rough-surface parameters; defaults from paper 000 Table 3."""
+    """Rough-surface parameters; defaults from Soleimanian et al. (2020) Table 3."""
 
     asperity_density: float = 0.54e9  # n [1/m^2]
     asperity_radius: float = 1.5e-4  # beta [m]

@@ -1,4 +1,4 @@
-"""Vertical contact mechanics of a four-row roller guideway (paper 000, eqs. 1b, 2, 3, 6-14).
+"""Vertical contact mechanics of a four-row roller guideway (Soleimanian et al. 2020, eqs. 1b, 2, 3, 6-14).
 
 Geometry: two upper and two lower grooves of N rollers each, contact angle theta measured from
 the horizontal (x) direction. y [m] is the vertical displacement of the moving body, positive in
@@ -37,7 +37,7 @@ from .roller_contact import (EXPONENT, MICRON, OpposedRows, approach_for_load, c
 
 @dataclass(frozen=True)
 class Guideway:
-    """A four-row roller guideway; defaults from paper 000 Table 2 and the INA RUE45-E."""
+    """A four-row roller guideway; defaults from Soleimanian et al. (2020) Table 2 and the INA RUE45-E."""
 
     rollers_per_groove: int = 20
     contact_angle: float = np.pi / 4  # rad, from the horizontal

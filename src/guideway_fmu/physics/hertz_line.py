@@ -1,7 +1,7 @@
 """Hertz theory of a line contact (cylinder on a flat), SI units.
 
 E' is the reduced modulus in Hamrock's convention, 2 / E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,
-as listed in paper 000 Table 3 (E' = 2e11 Pa).
+as listed in Soleimanian et al. (2020) Table 3 (E' = 2e11 Pa).
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Roller-raceway contact law F = k * delta^(10/9) (paper 000, eq. 2) and its stiffness constant.
+"""Roller-raceway contact law F = k * delta^(10/9) (Soleimanian et al. 2020, eq. 2) and its stiffness constant.
 
 ``delta`` is the total elastic approach of one roller between its two raceways [m]; a roller
 whose approach is zero or negative has lost contact and carries no load (not an error).

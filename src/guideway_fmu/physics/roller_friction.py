@@ -1,6 +1,6 @@
 """Friction force of a roller guideway on its moving part (the rail), SI units.
 
-Geometry (paper 000 Table 2): 4 grooves, 2 upper and 2 lower, each with N rollers; every
+Geometry (Soleimanian et al. 2020, Table 2): 4 grooves, 2 upper and 2 lower, each with N rollers; every
 roller has one contact with the moving part, loaded by F_upper or F_lower [N] with film
 thickness h_upper or h_lower [m]. The force on the moving part sums 2N upper and 2N lower
 contacts. Forces are returned with the sign of the force ON the moving part (opposing u).
@@ -30,7 +30,7 @@ def regularised_sign(u, velocity_tolerance: float):
 
 @dataclass(frozen=True)
 class MixedFrictionParams:
-    """Mixed-EHL friction model; defaults from paper 000 Tables 2 and 3.
+    """Mixed-EHL friction model; defaults from Soleimanian et al. (2020) Tables 2 and 3.
 
     Call :meth:`validate` once at set-up: the friction functions do not re-check it per call.
     """

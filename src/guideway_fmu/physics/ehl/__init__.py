@@ -1,4 +1,4 @@
-"""Full numerical mixed-EHL line contact of one roller (paper 000, eqs. 15-31), SI units.
+"""Full numerical mixed-EHL line contact of one roller (Soleimanian et al. 2020, eqs. 15-31), SI units.
 
 Entry points::
 
@@ -21,7 +21,7 @@ viscosity (eq. 20, garbled in the paper's text; the consistent form is used), Gr
 asperity pressure with the exact F_5/2 of :mod:`..greenwood_tripp` (eqs. 16-17), load sharing
 p = p_h + p_a (eq. 15), load balance (eq. 22) and the film with the elastic deformation of the
 total pressure (eq. 23). The asperity law uses E* = E'/2, the modulus of the Hertz asperity
-contact Greenwood and Tripp start from (paper 000 writes E', which doubles p_a; see
+contact Greenwood and Tripp start from (Soleimanian et al. 2020, writes E', which doubles p_a; see
 LineContactEHL.surface). Friction: boundary tau_l0 A_a + beta_m W_a (eqs. 25, 27-28) and the
 viscous shear of eq. 29 on surface 1, integrated over the full film and bounded by the
 limiting shear stress tau_l0 + beta_m p_h (the paper does not bound it), total eq. 31.

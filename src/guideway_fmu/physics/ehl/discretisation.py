@@ -2,7 +2,7 @@
 
 Hertz units: X = x / b, P = p / p_H, H = h R / b^2, with the scales b, p_H of a reference load.
 Unknowns on a uniform grid X_0..X_{n-1}: hydrodynamic pressure P_i, film H_i, and the rigid
-approach H_00. Equations (paper 000 eqs. 15-23):
+approach H_00. Equations (Soleimanian et al. 2020, eqs. 15-23):
 
 * Reynolds (eq. 18): d/dX(eps dP/dX) - lam d(rho H)/dX - kappa d(rho H)/dt = 0,
   eps = rho H^3 / eta, lam = 12 mu0 u_m R^2 / (b^3 p_H), kappa = 12 mu0 R^2 / (b^2 p_H) [s]

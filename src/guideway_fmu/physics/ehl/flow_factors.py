@@ -1,7 +1,7 @@
 """Patir-Cheng average flow model of a rough line contact (Patir and Cheng, J. Lubr. Technol.
 100 (1978) 12-17), for Gaussian roughness of RMS sigma [m] and Peklenik number gamma.
 
-The average Reynolds equation replaces the smooth film of paper 000 eq. 18 by
+The average Reynolds equation replaces the smooth film of Soleimanian et al. (2020) eq. 18 by
   d/dx(phi_x rho h^3 / (12 mu) dp/dx) = u_m d(rho h_T)/dx + d(rho h_T)/dt,
 with h the separation of the mean planes [m], phi_x the pressure flow factor and h_T the mean
 gap (fluid volume per area, asperity contacts excluded). The shear flow factor term is left

@@ -2,7 +2,7 @@
 
 Hamrock's dimensionless groups: W = w' / (E' R), U = mu0 u_m / (E' R), G = alpha E', with w'
 the load per unit length, u_m = (u1 + u2) / 2 the mean (entrainment) velocity and E' the
-reduced modulus 2 / E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (paper 000 Table 3: E' = 2e11 Pa).
+reduced modulus 2 / E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (Soleimanian et al. 2020, Table 3: E' = 2e11 Pa).
 Hertz scales: half-width b = R sqrt(8 W / pi), peak pressure p_H = E' sqrt(W / (2 pi)).
 """
 from __future__ import annotations
@@ -16,7 +16,7 @@ from .. import checks
 from .. import greenwood_tripp as gt
 from . import flow_factors
 
-# Roelands (paper 000 eq. 20): mu = mu0 exp{(ln mu0 + 9.67) [(1 + p / ROELANDS_PRESSURE)^Z - 1]}
+# Roelands (Soleimanian et al. 2020, eq. 20): mu = mu0 exp{(ln mu0 + 9.67) [(1 + p / ROELANDS_PRESSURE)^Z - 1]}
 ROELANDS_PRESSURE = 1.0 / 5.1e-9  # Pa
 ROELANDS_LN_VISCOSITY = 9.67  # -ln(6.31e-5 Pa s), mu0 in Pa s
 # Dowson-Higginson (eq. 19): rho / rho0 = 1 + A p / (1 + B p), p in Pa
@@ -66,7 +66,7 @@ def martin(W, U):
 
 @dataclass(frozen=True)
 class LineContactEHL:
-    """One roller-raceway line contact; defaults from paper 000 Tables 2-4.
+    """One roller-raceway line contact; defaults from Soleimanian et al. (2020) Tables 2-4.
 
     ``roughness`` = 0 gives smooth surfaces; otherwise the Greenwood-Tripp asperity pressure of
     :mod:`..greenwood_tripp` acts with the Table 4 asperity density and radius.
@@ -89,7 +89,7 @@ class LineContactEHL:
     asperity_radius: float = 1.5e-4  # beta [m]
     limiting_shear_stress: float = 2e6  # tau_l0 [Pa]
     limiting_shear_slope: float = 0.047  # beta_m [-]
-    average_flow: bool = False  # Patir-Cheng flow factors (True) or paper 000 eq. 18 (False)
+    average_flow: bool = False  # Patir-Cheng flow factors (True) or Soleimanian et al. (2020) eq. 18 (False)
     peklenik: float = 1.0  # gamma of the average flow model: 1 isotropic, 9 ground along motion
 
     @classmethod
@@ -155,7 +155,7 @@ class LineContactEHL:
 
         The asperity law uses E* = E' / 2 (1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2), not E':
         Greenwood and Tripp build it from Hertz's sphere-on-flat asperity contact
-        P = 4/3 E* beta^0.5 delta^1.5, whose modulus is E*. Paper 000 (eq. 16) writes E', as
+        P = 4/3 E* beta^0.5 delta^1.5, whose modulus is E*. Soleimanian et al. (2020) (eq. 16) writes E', as
         much of the mixed-EHL literature does; that doubles the asperity pressure.
         """
         if self.roughness == 0.0:

@@ -20,7 +20,7 @@ def friction(contact: LineContactEHL, x, p_h, p_a, h):
     tau = mu u_s / h + (h / 2) dp_h/dx (the sign of eq. 29's +- for this surface). tau is bounded
     by the limiting shear stress tau_l0 + beta_m p_h: a Newtonian Couette stress at EHL
     viscosities (1e6 Pa s and more) would otherwise exceed any shear strength of the lubricant;
-    paper 000 does not bound it.
+    Soleimanian et al. (2020) does not bound it.
     """
     c = contact
     dx = x[1] - x[0]
