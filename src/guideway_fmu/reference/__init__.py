@@ -1,0 +1,5 @@
+"""The monolithic reference of any scenario of registered FMUs (monolithic.py) and the
+comparison of a co-simulation with it (verify.py)."""
+from .monolithic import Reference, simulate
+
+__all__ = ["Reference", "simulate"]

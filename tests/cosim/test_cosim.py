@@ -120,7 +120,7 @@ def test_fmu_dir_override_takes_fmus_by_name(tmp_path, fmu_dir):
 
 def _generator():
     import importlib.util
-    root = Path(__file__).parents[1] / "orchestration"
+    root = Path(__file__).parents[2] / "orchestration"
     spec = importlib.util.spec_from_file_location("gen", root / "make_soleimanian2020_scenarios.py")
     gen = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gen)

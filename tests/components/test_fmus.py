@@ -650,7 +650,7 @@ def test_readme_lists_every_fmu_variable_with_its_unit(fmu_dir):
 
 
 def test_committed_fmus_readme_is_up_to_date(fmu_dir):
-    committed = Path(__file__).resolve().parents[1] / "fmus" / "README.md"
+    committed = Path(__file__).resolve().parents[2] / "fmus" / "README.md"
     assert committed.read_text() == (fmu_dir / "README.md").read_text(), (
         "fmus/README.md is stale: run `guideway-fmu build` and commit it")
 
