@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import graphlib
 import math
+from abc import ABC, abstractmethod
 from typing import TYPE_CHECKING
 
 from fmpy.fmi1 import FMICallException
@@ -70,7 +71,7 @@ def order(system: "System") -> list[str]:
     return list(graphlib.TopologicalSorter(feeds).static_order())
 
 
-class Algorithm:
+class Algorithm(ABC):
     """How macro steps are taken; a subclass with a ``name`` is registered in ALGORITHMS."""
 
     name = ""
@@ -99,9 +100,9 @@ class Algorithm:
         """Further (instance, output) to read after every step of their instance."""
         return set()
 
+    @abstractmethod
     def step(self, t: float, h: float) -> tuple[bool, float]:
         """Advance every instance from t by h [s]; (accepted, next step [s])."""
-        raise NotImplementedError
 
 
 class Jacobi(Algorithm):

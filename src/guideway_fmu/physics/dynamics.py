@@ -13,8 +13,10 @@ therefore written once, here in ``physics/``.
 """
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 
-class ContinuousModel:
+
+class ContinuousModel(ABC):
     """Base class; a stateless model overrides :meth:`outputs` only."""
 
     #: names of the inputs the equations read
@@ -35,10 +37,10 @@ class ContinuousModel:
         """d(state)/dt at the time t [s]."""
         return ()
 
+    @abstractmethod
     def outputs(self, t: float, state, inputs: dict, wanted=None) -> dict[str, float]:
         """The outputs at the time t [s]: every one, or at least the ``wanted`` names (a model
         with a cheaper path for a few of them may give only those)."""
-        raise NotImplementedError
 
     def evaluate(self, t: float, state, inputs: dict) -> tuple[tuple, dict]:
         """(derivatives, outputs) at once; a model whose two share work overrides it."""
