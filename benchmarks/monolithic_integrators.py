@@ -26,14 +26,14 @@ step = 2e-6
 fmu = "{fmus}/FeedKinematics.fmu"
 [components.Contact]
 fmu = "{fmus}/ContactEHL.fmu"
-[components.Body]
+[components.Carriage]
 fmu = "{fmus}/VerticalDynamics.fmu"
 parameters = {{ load_amplitude = {amplitude}, load_frequency = 4500.0 }}
 [components.Friction]
 fmu = "{fmus}/FrictionMixedEHL.fmu"
 """ + "".join(f'[[connections]]\nfrom = "{a}"\nto = "{b}"\n' for a, b in [
-    ("Feed.u", "Contact.u"), ("Feed.u", "Friction.u"), ("Body.y", "Contact.y"),
-    ("Body.y_dot", "Contact.y_dot"), ("Contact.F_contact", "Body.F_contact"),
+    ("Feed.u", "Contact.u"), ("Feed.u", "Friction.u"), ("Carriage.y", "Contact.y"),
+    ("Carriage.y_dot", "Contact.y_dot"), ("Contact.F_contact", "Carriage.F_contact"),
     *((f"Contact.{v}", f"Friction.{v}") for v in ("F_upper", "F_lower", "h_upper", "h_lower"))])
 
 

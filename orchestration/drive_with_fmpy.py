@@ -4,8 +4,8 @@ Three FMUs (FeedKinematics, VerticalDynamics, ContactEHL) are wired as in
 scenarios/soleimanian2020_9000N_4500Hz.toml and stepped with a stabilised Gauss-Seidel loop:
 
     Feed --u--------------------------> Contact
-    Body --y, y_dot-------------------> Contact
-    Contact --F_contact, C_contact, law_*--> Body   (law_*: the contact's force law)
+    Carriage --y, y_dot-------------------> Contact
+    Contact --F_contact, C_contact, law_*--> Carriage   (law_*: the contact's force law)
 
 Nothing from guideway_fmu is imported: only fmpy and the .fmu files (which need numpy and scipy
 in this interpreter, because they are pythonfmu FMUs).
@@ -27,7 +27,7 @@ from fmpy.fmi2 import FMU2Slave
 
 HERE = Path(__file__).resolve().parent
 STEP = 2e-6  # s, macro step h (the contact resonance is ~6.6 kHz: omega*h ~ 0.08)
-BLOW_UP = 1e-3  # m, |Body.y| beyond this is no longer a guideway (normal: ~15 um here)
+BLOW_UP = 1e-3  # m, |Carriage.y| beyond this is no longer a guideway (normal: ~15 um here)
 GROWTH = 2.0  # max |y| of the last fifth of the run over that of the first fifth: "unstable"
 JUDGE = 3e-3  # s, shortest run whose growth is judged: the explicit growth e-folds in ~3 ms
 LAW = tuple(f"law_{n}" for n in ("force_1um", "exponent", "sine", "approach_upper",
@@ -69,11 +69,11 @@ class Instance:
 
 def run(fmus: Path, stop: float, explicit: bool, csv_path: Path) -> int:
     instances: list[Instance] = []
-    rows: list[tuple] = []  # (time [s], Body.y [m], Contact.F_upper [N], Contact.h_upper [m])
+    rows: list[tuple] = []  # (time [s], Carriage.y [m], Contact.F_upper [N], Contact.h_upper [m])
     try:
         feed = Instance(fmus / "FeedKinematics.fmu", "Feed")
         instances.append(feed)
-        body = Instance(fmus / "VerticalDynamics.fmu", "Body")
+        body = Instance(fmus / "VerticalDynamics.fmu", "Carriage")
         instances.append(body)
         contact = Instance(fmus / "ContactEHL.fmu", "Contact")
         instances.append(contact)
@@ -102,12 +102,12 @@ def run(fmus: Path, stop: float, explicit: bool, csv_path: Path) -> int:
         # -- stabilised Gauss-Seidel: each macro step uses the newest outputs -----------------
         # The contact is stiff (K_contact ~ 5e9 N/m on 2.9 kg, ~6.6 kHz) and undamped (its
         # `damping` parameter is 0, so C_contact = 0). Holding F_contact constant over a step
-        # (explicit coupling: K_contact = C_contact = 0 at the Body) feeds energy in every step:
+        # (explicit coupling: K_contact = C_contact = 0 at the Carriage) feeds energy in every step:
         # a spring-mass split over two FMUs that way is stable only for omega*h < 4*zeta, never
-        # for zeta = 0, whatever h. Passing the tangents lets the Body integrate
+        # for zeta = 0, whatever h. Passing the tangents lets the Carriage integrate
         # F ~ F_contact + K_contact dy + C_contact dy_dot over the step instead: stable for any h
         # (exact for a linear spring). Better still, the contact's own force law (law_*: two
-        # opposed rows of rollers whose films move at their present rates) lets the Body
+        # opposed rows of rollers whose films move at their present rates) lets the Carriage
         # evaluate the exact frozen-film force at every instant of the step, lift-off and
         # re-contact included. `--explicit` passes none of it to show the difference.
         n = round(stop / STEP)
@@ -126,13 +126,13 @@ def run(fmus: Path, stop: float, explicit: bool, csv_path: Path) -> int:
             f_c, c_c, f_up, h_up, *law = contact.get(*outputs)
             rows.append(((i + 1) * STEP, y, f_up, h_up))
             if not math.isfinite(y) or abs(y) > BLOW_UP:
-                print(f"UNSTABLE: |Body.y| = {abs(y):.3g} m > {BLOW_UP:g} m at t = {rows[-1][0]:.6g} s "
+                print(f"UNSTABLE: |Carriage.y| = {abs(y):.3g} m > {BLOW_UP:g} m at t = {rows[-1][0]:.6g} s "
                       f"after {i + 1} steps; stopped early.")
                 break
     except Exception as exc:  # an FMU that rejects a step raises here
         if explicit and rows:
             print(f"UNSTABLE: an FMU failed at t = {rows[-1][0]:.6g} s ({exc}); "
-                  f"last |Body.y| = {abs(rows[-1][1]):.3g} m.")
+                  f"last |Carriage.y| = {abs(rows[-1][1]):.3g} m.")
         else:
             print(f"error: {exc}", file=sys.stderr)
             return 1
@@ -143,7 +143,7 @@ def run(fmus: Path, stop: float, explicit: bool, csv_path: Path) -> int:
     csv_path.parent.mkdir(parents=True, exist_ok=True)
     with csv_path.open("w", newline="") as f:
         writer = csv.writer(f)
-        writer.writerow(["time", "Body.y", "Contact.F_upper", "Contact.h_upper"])  # s, m, N, m
+        writer.writerow(["time", "Carriage.y", "Contact.F_upper", "Contact.h_upper"])  # s, m, N, m
         writer.writerows(rows)
     f_upper = [r[2] for r in rows]
     # growth of the displacement: max |y| over the last fifth of the run against the first fifth
@@ -153,7 +153,7 @@ def run(fmus: Path, stop: float, explicit: bool, csv_path: Path) -> int:
     print(f"{'explicit' if explicit else 'stabilised'} coupling, {len(rows) - 1} steps of {STEP:g} s "
           f"to t = {rows[-1][0]:.6g} s -> {csv_path}")
     print(f"Contact.F_upper: min {min(f_upper):.2f} N, max {max(f_upper):.2f} N")
-    print(f"max |Body.y|: {y_first:.3g} m in the first fifth, {y_last:.3g} m in the last fifth")
+    print(f"max |Carriage.y|: {y_first:.3g} m in the first fifth, {y_last:.3g} m in the last fifth")
     if y_last > BLOW_UP or rows[-1][0] >= JUDGE and y_last > GROWTH * y_first:
         print("UNSTABLE: the displacement grows without bound")
     elif rows[-1][0] >= JUDGE:
@@ -168,7 +168,7 @@ def main(argv=None) -> int:
     p.add_argument("--fmus", type=Path, default=HERE.parent / "fmus", help="folder of the .fmu files")
     p.add_argument("--stop", type=float, default=0.01, help="simulated time [s] (default 0.01)")
     p.add_argument("--explicit", action="store_true",
-                   help="do not pass the contact's law to the Body (shows the instability)")
+                   help="do not pass the contact's law to the Carriage (shows the instability)")
     p.add_argument("--csv", type=Path, default=HERE.parent / "out" / "drive_with_fmpy.csv",
                    help="output CSV (default ../out/drive_with_fmpy.csv)")
     args = p.parse_args(argv)

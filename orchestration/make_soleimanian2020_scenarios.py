@@ -30,7 +30,7 @@ STEP = {0: 4e-6, 6000: 4e-6, 9000: 4e-6, 12000: 4e-6,
 DRY_STEP = 2e-6  # s, both dry scenarios
 LAW = ("force_1um", "exponent", "sine", "approach_upper", "approach_lower", "rate_upper",
        "rate_lower")  # the contact's force law over a step, handed to the carriage
-RECORD = ["Feed.u", "Body.y", "Body.y_dot", "Contact.F_contact", "Contact.F_upper",
+RECORD = ["Feed.u", "Carriage.y", "Carriage.y_dot", "Contact.F_contact", "Contact.F_upper",
           "Contact.F_lower", "Contact.h_upper", "Contact.h_lower", "Contact.K_contact"]
 HEADER = "Written by orchestration/make_soleimanian2020_scenarios.py; edit that script, not this file."
 
@@ -43,25 +43,25 @@ def scenario(name, description, amplitude=0, frequency=0.0, contact="ContactEHL"
     # FMUs by file name: found in the FMU folder that commands are given (--fmus)
     b = Builder(name, description).experiment(stop=0.2, step=step, algorithm="stabilised")
     b.component("Feed", Path("FeedKinematics.fmu"), profile="biharmonic", frequency=5.0)
-    b.component("Body", Path("VerticalDynamics.fmu"), load_amplitude=float(amplitude),
+    b.component("Carriage", Path("VerticalDynamics.fmu"), load_amplitude=float(amplitude),
                 load_frequency=float(frequency))
     b.component("Contact", Path(f"{contact}.fmu"))
     if friction:
         b.component("Friction", Path("FrictionMixedEHL.fmu"))
-    for source, target in (("Feed.u", "Contact.u"), ("Body.y", "Contact.y"),
-                           ("Body.y_dot", "Contact.y_dot"), ("Contact.F_contact", "Body.F_contact")):
+    for source, target in (("Feed.u", "Contact.u"), ("Carriage.y", "Contact.y"),
+                           ("Carriage.y_dot", "Contact.y_dot"), ("Contact.F_contact", "Carriage.F_contact")):
         b.connect(source, target)
     if friction:
         b.connect("Feed.u", "Friction.u")
         for v in ("F_upper", "F_lower", "h_upper", "h_lower"):
             b.connect(f"Contact.{v}", f"Friction.{v}")
-    b.tangent("Contact.F_contact", "Contact.y", "Contact.K_contact", "Body.K_contact",
-              "Contact.y_dot", "Contact.C_contact", "Body.C_contact",
-              model={f"law_{n}": f"Body.law_{n}" for n in LAW},
+    b.tangent("Contact.F_contact", "Contact.y", "Contact.K_contact", "Carriage.K_contact",
+              "Contact.y_dot", "Contact.C_contact", "Carriage.C_contact",
+              model={f"law_{n}": f"Carriage.law_{n}" for n in LAW},
               settings={"interpolate_inputs": True} if contact == "ContactEHL" else None)
     b.record(RECORD + (["Friction.F_friction"] if friction else []), interval=4e-6)
-    b.plots(time=["Body.y", "Contact.F_upper", "Contact.F_lower"],
-            spectrum=["Body.y", "Contact.F_upper"], film=["Contact.h_upper", "Contact.h_lower"],
+    b.plots(time=["Carriage.y", "Contact.F_upper", "Contact.F_lower"],
+            spectrum=["Carriage.y", "Contact.F_upper"], film=["Contact.h_upper", "Contact.h_lower"],
             envelope=["Contact.F_upper"], skip=0.01, window=1e-3, f_max=20000.0)
     return b.system(check_fmus=False)
 

@@ -47,7 +47,7 @@ def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_p
     assert summary["parameters"]["Contact"]["preload"] == 9200.0
     assert {"results.csv", "time.png", "spectrum.png", "film.png", "envelope.png"} <= set(summary["files"])
     data = np.genfromtxt(out / "results.csv", delimiter=",", names=True)
-    y = data["Bodyy"] - data["Bodyy"].mean()
+    y = data["Carriagey"] - data["Carriagey"].mean()
     crossings = np.count_nonzero(np.diff(np.sign(y)) != 0)
     assert abs(crossings / 2 / data["time"][-1] / 6590.0 - 1) < 0.1  # ~10 periods, published 6590 Hz
     assert np.all(data["FrictionF_friction"] < 0)  # the feed velocity is positive here
@@ -59,7 +59,7 @@ def test_cli_verify_json_meets_the_accuracy_target_on_a_short_loaded_run(fmu_dir
     report = json.loads(capsys.readouterr().out)
     assert set(report) >= {"rms_error", "peak_error", "wall_time_cosim", "wall_time_reference"}
     assert report["rms_error"]["Contact.F_upper"] < 0.01
-    assert "Body.y" in report["peak_error"]
+    assert "Carriage.y" in report["peak_error"]
 
 
 def test_cli_export_ssp_writes_a_package(fmu_dir, tmp_path, capsys):
@@ -122,7 +122,7 @@ def test_run_with_an_fmu_that_cannot_be_instantiated_is_a_clear_error(fmu_dir, t
             if not item.filename.startswith("binaries/"):
                 dst.writestr(item, src.read(item))
     path = tmp_path / "s.toml"
-    path.write_text(f'[experiment]\nstop = 1e-3\nstep = 1e-5\n[components.Body]\nfmu = "{broken}"\n')
+    path.write_text(f'[experiment]\nstop = 1e-3\nstep = 1e-5\n[components.Carriage]\nfmu = "{broken}"\n')
     assert cli.main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 2
     err = capsys.readouterr().err
-    assert "cannot instantiate Body" in err and "Traceback" not in err
+    assert "cannot instantiate Carriage" in err and "Traceback" not in err

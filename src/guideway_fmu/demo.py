@@ -113,7 +113,7 @@ def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02) -> dict:
         scenario = system.load(scenarios.find(name), fmu_dir).with_changes(stop=stop)
         result = run.run(scenario, out_dir / name, progress=False)
         rec = result.recording
-        freq, amp = plots.spectrum(rec.time, rec.columns["Body.y"])
+        freq, amp = plots.spectrum(rec.time, rec.columns["Carriage.y"])
         band = freq > 1000.0
         summary["runs"][name] = {
             "steps": result.steps, "wall_time_s": result.wall_time,

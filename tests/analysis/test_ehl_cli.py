@@ -217,9 +217,9 @@ def test_ehl_cycle_bad_input_exits_2_with_a_clear_message(tmp_path, capsys, chan
         (run / "results.csv").unlink()
     elif change == "no_column":
         t = np.arange(4) * 1e-6
-        _write_run(run, t, t + 1, t, t, columns=["time", "Feed.u", "Contact.F_upper", "Body.y"])
+        _write_run(run, t, t + 1, t, t, columns=["time", "Feed.u", "Contact.F_upper", "Carriage.y"])
     elif change == "no_instance":
-        (run / "summary.json").write_text(json.dumps({"parameters": {"Body": {}}}))
+        (run / "summary.json").write_text(json.dumps({"parameters": {"Carriage": {}}}))
     elif change == "dry_contact":
         dry = {k: v for k, v in PARAMETERS.items() if k != "viscosity"}
         (run / "summary.json").write_text(json.dumps({"parameters": {"Contact": dry}}))

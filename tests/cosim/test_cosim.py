@@ -22,7 +22,7 @@ step = {step}
 algorithm = "{algorithm}"
 tolerance = {tolerance}
 
-[components.Body]
+[components.Carriage]
 fmu = "{fmus}/VerticalDynamics.fmu"
 parameters = {{ gravity = 0.0, y_start = 2e-7, load_amplitude = {load} , load_frequency = 4500.0 }}
 
@@ -30,20 +30,20 @@ parameters = {{ gravity = 0.0, y_start = 2e-7, load_amplitude = {load} , load_fr
 fmu = "{fmus}/ContactDryHertz.fmu"
 
 [[connections]]
-from = "Body.y"
+from = "Carriage.y"
 to = "Contact.y"
 [[connections]]
-from = "Body.y_dot"
+from = "Carriage.y_dot"
 to = "Contact.y_dot"
 [[connections]]
 from = "Contact.F_contact"
-to = "Body.F_contact"
+to = "Carriage.F_contact"
 
 [[tangents]]
 force = "Contact.F_contact"
 position = "Contact.y"
 stiffness = "{stiffness}"
-to_stiffness = "Body.K_contact"
+to_stiffness = "Carriage.K_contact"
 """
 
 
@@ -63,10 +63,10 @@ def rig(tmp_path, fmu_dir, stop=2e-3, step=1e-6, algorithm="stabilised", toleran
 # -- system descriptions ------------------------------------------------------------------
 def test_load_reads_components_connections_tangents(tmp_path, fmu_dir):
     s = rig(tmp_path, fmu_dir)
-    assert list(s.components) == ["Body", "Contact"]
-    assert s.components["Body"].parameters["y_start"] == 2e-7
-    assert s.connections[2] == system.Connection("Contact", "F_contact", "Body", "F_contact")
-    assert s.tangents[0].to_stiffness == ("Body", "K_contact")
+    assert list(s.components) == ["Carriage", "Contact"]
+    assert s.components["Carriage"].parameters["y_start"] == 2e-7
+    assert s.connections[2] == system.Connection("Contact", "F_contact", "Carriage", "F_contact")
+    assert s.tangents[0].to_stiffness == ("Carriage", "K_contact")
     assert s.unit("Contact", "F_contact") == "N"
 
 
@@ -77,21 +77,21 @@ def test_load_reads_components_connections_tangents(tmp_path, fmu_dir):
     (lambda t: t.replace("step = 1e-06", 'step = "fast"'), r"\[experiment\] key 'step': must be float"),
     (lambda t: t.replace("stop = 0.002", "stop = 0.002\nsolver = 1"), r"\[experiment\] key 'solver': is not a known key"),
     (lambda t: t.replace("ContactDryHertz.fmu", "Nope.fmu"), r"\[components.Contact\] key 'fmu': FMU file .*Nope.fmu does not exist"),
-    (lambda t: t.replace("y_start = 2e-7", "y_begin = 2e-7"), r"\[components.Body.parameters\] key 'y_begin': VerticalDynamics.fmu has no parameter"),
-    (lambda t: t.replace("y_start = 2e-7", 'y_start = "high"'), r"\[components.Body.parameters\] key 'y_start': Real variable cannot take 'high'"),
+    (lambda t: t.replace("y_start = 2e-7", "y_begin = 2e-7"), r"\[components.Carriage.parameters\] key 'y_begin': VerticalDynamics.fmu has no parameter"),
+    (lambda t: t.replace("y_start = 2e-7", 'y_start = "high"'), r"\[components.Carriage.parameters\] key 'y_start': Real variable cannot take 'high'"),
     (lambda t: t.replace('to = "Contact.y"\n', 'to = "Contact.F_upper"\n'), r"\[connections #1\] key 'to': Contact.F_upper is an output, not an input"),
-    (lambda t: t.replace('from = "Body.y"\n', 'from = "Body.z"\n'), r"\[connections #1\] key 'from': VerticalDynamics.fmu has no variable 'z'"),
-    (lambda t: t.replace('from = "Body.y"\n', 'from = "Bodyy"\n'), r"\[connections #1\] key 'from': must be '<instance>.<variable>'"),
-    (lambda t: t.replace('from = "Body.y_dot"\nto = "Contact.y_dot"', 'from = "Body.y_dot"\nto = "Contact.y"'), r"\[connections #2\] key 'to': Contact.y is already fed by Body.y"),
-    (lambda t: t.replace('from = "Body.y"\n', 'from = "Wheel.y"\n'), r"\[connections #1\] key 'from': no component named 'Wheel'"),
-    (lambda t: t.replace('position = "Contact.y"', 'position = "Body.y"'), r"\[tangents #1\] key 'position': must be an input of Contact"),
-    (lambda t: t + "\n[record]\nvariables = [\"Body.q\"]\n", r"\[record\] key 'variables': VerticalDynamics.fmu has no variable 'q'"),
-    (lambda t: t + 'model = { law_nope = "Body.law_sine" }\n', r"\[tangents #1.model\] key 'law_nope': ContactDryHertz.fmu has no variable 'law_nope'"),
-    (lambda t: t + 'model = { law_sine = "Body" }\n', r"\[tangents #1.model\] key 'law_sine': must be '<instance>.<variable>'"),
-    (lambda t: t + 'model = { law_sine = "Body.F_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Body.F_contact is already fed by Contact.F_contact"),
-    (lambda t: t + 'model = { law_sine = "Body.K_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Body.K_contact is already fed by Contact.K_contact"),
-    (lambda t: t.replace('to = "Body.F_contact"', 'to = "Body.K_contact"'), r"\[tangents #1\] key 'to_stiffness': Body.K_contact is already fed by Contact.F_contact"),
-    (lambda t: t + 'model = { law_sine = "Body.y" }\n', r"\[tangents #1.model\] key 'law_sine': Body.y is an output, not an input"),
+    (lambda t: t.replace('from = "Carriage.y"\n', 'from = "Carriage.z"\n'), r"\[connections #1\] key 'from': VerticalDynamics.fmu has no variable 'z'"),
+    (lambda t: t.replace('from = "Carriage.y"\n', 'from = "Carriagey"\n'), r"\[connections #1\] key 'from': must be '<instance>.<variable>'"),
+    (lambda t: t.replace('from = "Carriage.y_dot"\nto = "Contact.y_dot"', 'from = "Carriage.y_dot"\nto = "Contact.y"'), r"\[connections #2\] key 'to': Contact.y is already fed by Carriage.y"),
+    (lambda t: t.replace('from = "Carriage.y"\n', 'from = "Wheel.y"\n'), r"\[connections #1\] key 'from': no component named 'Wheel'"),
+    (lambda t: t.replace('position = "Contact.y"', 'position = "Carriage.y"'), r"\[tangents #1\] key 'position': must be an input of Contact"),
+    (lambda t: t + "\n[record]\nvariables = [\"Carriage.q\"]\n", r"\[record\] key 'variables': VerticalDynamics.fmu has no variable 'q'"),
+    (lambda t: t + 'model = { law_nope = "Carriage.law_sine" }\n', r"\[tangents #1.model\] key 'law_nope': ContactDryHertz.fmu has no variable 'law_nope'"),
+    (lambda t: t + 'model = { law_sine = "Carriage" }\n', r"\[tangents #1.model\] key 'law_sine': must be '<instance>.<variable>'"),
+    (lambda t: t + 'model = { law_sine = "Carriage.F_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Carriage.F_contact is already fed by Contact.F_contact"),
+    (lambda t: t + 'model = { law_sine = "Carriage.K_contact" }\n', r"\[tangents #1.model\] key 'law_sine': Carriage.K_contact is already fed by Contact.K_contact"),
+    (lambda t: t.replace('to = "Carriage.F_contact"', 'to = "Carriage.K_contact"'), r"\[tangents #1\] key 'to_stiffness': Carriage.K_contact is already fed by Contact.F_contact"),
+    (lambda t: t + 'model = { law_sine = "Carriage.y" }\n', r"\[tangents #1.model\] key 'law_sine': Carriage.y is an output, not an input"),
     (lambda t: t + 'settings = { preload = "high" }\n', r"\[tangents #1.settings\] key 'preload': Real variable cannot take 'high'"),
     (lambda t: t + 'settings = { y = 1.0 }\n', r"\[tangents #1.settings\] key 'y': Contact.y is an input, not a parameter"),
     (lambda t: t + "\n[plots]\nfilm = \"Contact.h_upper\"\n", r"\[plots\] key 'film': must be list"),
@@ -155,27 +155,27 @@ def test_dump_then_load_round_trips_every_shipped_scenario(fmu_dir, tmp_path, na
 def test_builder_writes_a_checked_system_that_loads_back_equal(fmu_dir, tmp_path):
     b = system.Builder("built", "a rig from code").experiment(stop=1e-3, step=1e-5,
                                                                algorithm="stabilised")
-    b.component("Body", fmu_dir / "VerticalDynamics.fmu", load_static=100.0, y_start=1e-7)
+    b.component("Carriage", fmu_dir / "VerticalDynamics.fmu", load_static=100.0, y_start=1e-7)
     b.component("Contact", fmu_dir / "ContactDryHertz.fmu", preload=8000.0)
-    b.connect("Body.y", "Contact.y").connect("Contact.F_contact", "Body.F_contact")
-    b.tangent("Contact.F_contact", "Contact.y", "fd", "Body.K_contact")
-    b.record(["Body.y"], interval=1e-4).plots(time=["Body.y"], skip=0.0)
+    b.connect("Carriage.y", "Contact.y").connect("Contact.F_contact", "Carriage.F_contact")
+    b.tangent("Contact.F_contact", "Contact.y", "fd", "Carriage.K_contact")
+    b.record(["Carriage.y"], interval=1e-4).plots(time=["Carriage.y"], skip=0.0)
     built = b.system()
-    assert built.variables["Body"]["y"].causality == "output"  # checked against the FMUs
+    assert built.variables["Carriage"]["y"].causality == "output"  # checked against the FMUs
     loaded = system.load(system.dump(built, tmp_path / "built.toml"))
     assert _described(loaded) == _described(built)
-    assert master.simulate(loaded).recording.columns["Body.y"].size == 11
+    assert master.simulate(loaded).recording.columns["Carriage.y"].size == 11
 
 
 def test_builder_refuses_a_malformed_reference_naming_the_key():
     with pytest.raises(system.ScenarioError, match="to must be '<instance>.<variable>'"):
-        system.Builder("x").connect("Body.y", "Contact")
+        system.Builder("x").connect("Carriage.y", "Contact")
 
 
 # -- ordering -----------------------------------------------------------------------------
 def test_order_steps_state_outputs_before_feedthrough_in_a_loop(tmp_path, fmu_dir):
-    # Body.y is a state, Contact.F_contact feeds through from Contact.y: Body first.
-    assert algorithms.order(rig(tmp_path, fmu_dir)) == ["Body", "Contact"]
+    # Carriage.y is a state, Contact.F_contact feeds through from Contact.y: Carriage first.
+    assert algorithms.order(rig(tmp_path, fmu_dir)) == ["Carriage", "Contact"]
 
 
 # -- algorithms: independent checks -------------------------------------------------------
@@ -195,7 +195,7 @@ def zero_crossing_frequency(time, y):
 def test_limiting_case_small_motion_oscillates_at_sqrt_k_over_m(tmp_path, fmu_dir, algorithm):
     result = master.simulate(rig(tmp_path, fmu_dir, algorithm=algorithm))
     rec = result.recording
-    f = zero_crossing_frequency(rec.time, rec.columns["Body.y"])
+    f = zero_crossing_frequency(rec.time, rec.columns["Carriage.y"])
     assert f == pytest.approx(linear_frequency(), rel=2e-3)
     assert result.steps == 2000 and result.rejected == 0
 
@@ -206,7 +206,7 @@ def test_stability_stabilised_bounded_where_explicit_coupling_diverges(tmp_path,
     amplitude = {}
     for alg in ("jacobi", "stabilised"):
         rec = master.simulate(rig(tmp_path, fmu_dir, stop=5e-3, step=2e-5, algorithm=alg)).recording
-        amplitude[alg] = np.abs(rec.columns["Body.y"]).max()
+        amplitude[alg] = np.abs(rec.columns["Carriage.y"]).max()
     assert amplitude["stabilised"] < 2.2e-7
     assert amplitude["jacobi"] > 1e-5
 
@@ -271,16 +271,16 @@ def test_step_size_control_rejects_and_rolls_back_yet_stays_accurate(tmp_path, f
 # -- recording and failures ---------------------------------------------------------------
 def test_run_writes_results_with_units_summary_and_plots(tmp_path, fmu_dir):
     s = rig(tmp_path, fmu_dir, stop=1e-3)
-    s = system.System(**{**s.__dict__, "plots": {"time": ["Body.y"], "spectrum": ["Body.y"]}})
+    s = system.System(**{**s.__dict__, "plots": {"time": ["Carriage.y"], "spectrum": ["Carriage.y"]}})
     s = system.check(s, "test")
     result = run(s, tmp_path / "out", progress=False)
     header = (tmp_path / "out" / "results.csv").read_text().splitlines()[0].split(",")
     assert header[0] == "time" and "Contact.F_contact" in header
     units = json.loads((tmp_path / "out" / "results.units.json").read_text())
-    assert units["Contact.F_contact"] == "N" and units["Body.y"] == "m"
+    assert units["Contact.F_contact"] == "N" and units["Carriage.y"] == "m"
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["steps"] == result.steps == 1000
-    assert summary["parameters"]["Body"]["y_start"] == 2e-7
+    assert summary["parameters"]["Carriage"]["y_start"] == 2e-7
     assert summary["algorithm"] == "stabilised" and summary["rejected"] == 0
     for png in ("time.png", "spectrum.png"):
         assert (tmp_path / "out" / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -294,7 +294,7 @@ algorithm = "{algorithm}"
 tolerance = {tolerance}
 min_step = 1e-6
 
-[components.Body]    # free body, F_e = 100 cos(2 pi 50 t): y_dot = A / (M w) sin(w t)
+[components.Carriage]    # free body, F_e = 100 cos(2 pi 50 t): y_dot = A / (M w) sin(w t)
 fmu = "{fmus}/VerticalDynamics.fmu"
 parameters = {{ gravity = 0.0, load_amplitude = 100.0, load_frequency = 50.0, load_phase = 1.5707963267948966 }}
 
@@ -302,7 +302,7 @@ parameters = {{ gravity = 0.0, load_amplitude = 100.0, load_frequency = 50.0, lo
 fmu = "{fmus}/VerticalDynamics.fmu"
 
 [[connections]]
-from = "Body.y_dot"
+from = "Carriage.y_dot"
 to = "Probe.K_contact"
 """
 

@@ -25,10 +25,10 @@ LIBCOSIM = {**BASE, "Feed": {"profile": "oscillating", "mean_velocity": 0.0, "fr
 FMPY = {**BASE, "Feed": {"phase1": 0.0, "phase2": 0.0}}  # biharmonic; both profiles: u(0) = 0
 FRICTION_INPUTS = [("Feed.u", "u")] + [(f"Contact.{v}", v)
                                        for v in ("F_upper", "F_lower", "h_upper", "h_lower")]
-WIRES = [("Feed.u", "Contact.u"), ("Body.y", "Contact.y"), ("Body.y_dot", "Contact.y_dot"),
-         ("Contact.F_contact", "Body.F_contact")] + [
+WIRES = [("Feed.u", "Contact.u"), ("Carriage.y", "Contact.y"), ("Carriage.y_dot", "Contact.y_dot"),
+         ("Contact.F_contact", "Carriage.F_contact")] + [
     (src, f"{inst}.{var}") for inst in ("Friction", "Rough") for src, var in FRICTION_INPUTS]
-FMUS = {"Feed": "FeedKinematics", "Contact": "ContactEHL", "Body": "VerticalDynamics",
+FMUS = {"Feed": "FeedKinematics", "Contact": "ContactEHL", "Carriage": "VerticalDynamics",
         "Friction": "FrictionMixedEHL", "Rough": "FrictionMixedEHL"}  # two instances, one file
 RTOL = 1e-11  # round-off: libcosim counts integer ns, its FMUs see t off by ~1e-19 s (worst seen 9e-14)
 
@@ -93,7 +93,7 @@ def test_ssd_structure(lc_case):
         assert comp.get("source") == f"resources/{sys_.components[name].fmu.name}"
         assert comp.get("type") == "application/x-fmu-sharedlibrary"
     kinds = {(c.get("name"), c.get("kind"), c[0].tag.split("}")[1])
-             for c in comps["Body"].findall("ssd:Connectors/ssd:Connector", NS)}
+             for c in comps["Carriage"].findall("ssd:Connectors/ssd:Connector", NS)}
     assert ("F_contact", "input", "Real") in kinds and ("y", "output", "Real") in kinds
     assert ("mass", "parameter", "Real") in kinds
     assert not {"F_ext", "K_contact", "C_contact"} & {k[0] for k in kinds}  # unconnected inputs
@@ -111,7 +111,7 @@ def test_ssd_structure(lc_case):
                                 "frequency": ("Real", "40.0")}
     assert bindings("Contact") == {"preload": ("Real", "8000.0")}
     assert bindings("Rough") == {"rollers_per_groove": ("Integer", "18")}
-    assert bindings("Body") == {}
+    assert bindings("Carriage") == {}
     exp = root.find("ssd:DefaultExperiment", NS)
     assert (float(exp.get("startTime")), float(exp.get("stopTime"))) == (0.0, 2e-4)
     algorithm = exp.find("ssd:Annotations/ssc:Annotation[@type='com.opensimulationplatform']/"
@@ -200,6 +200,6 @@ def test_parameter_set_refuses_what_fmpy_would_get_wrong(lc_case, fmpy_case):
     with pytest.raises(ValueError, match="Feed.profile: fmpy's simulate_ssp cannot set String"):
         ssp.parameter_set(lc_case[0])
     sys_ = fmpy_case[0]
-    clash = dataclasses.replace(sys_, components={**sys_.components, "R": sys_.components["Body"]})
+    clash = dataclasses.replace(sys_, components={**sys_.components, "R": sys_.components["Carriage"]})
     with pytest.raises(ValueError, match="Rough.rollers_per_groove: fmpy would also apply it to R"):
         ssp.parameter_set(clash)

@@ -10,8 +10,8 @@ from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import system
 from guideway_fmu.physics import carriage, feed_profiles, guideway
 
-RIG_WIRING = [("Body.y", "Contact.y"), ("Body.y_dot", "Contact.y_dot"),
-              ("Contact.F_contact", "Body.F_contact")]
+RIG_WIRING = [("Carriage.y", "Contact.y"), ("Carriage.y_dot", "Contact.y_dot"),
+              ("Contact.F_contact", "Carriage.F_contact")]
 FRICTION_WIRING = [("Feed.u", "Friction.u"), *((f"Contact.{v}", f"Friction.{v}")
                                                for v in ("F_upper", "F_lower", "h_upper", "h_lower"))]
 
@@ -37,10 +37,10 @@ def scenario(path, fmu_dir, components, connections, stop, step=1e-6):
 def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_dir, tmp_path):
     mass, preload = 2.5, 8000.0
     rig = scenario(tmp_path / "dry.toml", fmu_dir, {
-        "Body": ("VerticalDynamics", {"mass": mass, "gravity": 0.0, "y_start": 1e-9}),
+        "Carriage": ("VerticalDynamics", {"mass": mass, "gravity": 0.0, "y_start": 1e-9}),
         "Contact": ("ContactDryHertz", {"preload": preload})}, RIG_WIRING, stop=3e-3)
     ref = monolithic.simulate(rig)
-    y, t = ref.columns["Body.y"], ref.time
+    y, t = ref.columns["Carriage.y"], ref.time
     np.testing.assert_array_equal(t, np.arange(3001) * 1e-6)
     i = np.flatnonzero(np.sign(y[:-1]) != np.sign(y[1:]))
     crossings = t[i] - y[i] * (t[i + 1] - t[i]) / (y[i + 1] - y[i])
@@ -67,12 +67,12 @@ def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, c
     rig = scenario(tmp_path / "static.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {"profile": "constant", "velocity": u}),
         "Contact": (contact, {"film_model": film_model} if film_model else {}),
-        "Body": ("VerticalDynamics", {"load_static": load, "y_start": y_eq}),
+        "Carriage": ("VerticalDynamics", {"load_static": load, "y_start": y_eq}),
     }, [("Feed.u", "Contact.u"), *RIG_WIRING], stop=5e-4, step=1e-5)
     ref = monolithic.simulate(rig)
     assert y_eq > 5e-7
-    assert np.max(np.abs(ref.columns["Body.y"] - y_eq)) < 1e-9 * y_eq
-    assert np.max(np.abs(ref.columns["Body.y_ddot"])) < 1e-3
+    assert np.max(np.abs(ref.columns["Carriage.y"] - y_eq)) < 1e-9 * y_eq
+    assert np.max(np.abs(ref.columns["Carriage.y_ddot"])) < 1e-3
     h = ref.columns["Contact.h_upper"]
     assert np.ptp(h) <= 1e-9 * h[0]
 
@@ -80,7 +80,7 @@ def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, c
 def test_tighter_tolerance_changes_the_loaded_rig_little(fmu_dir, tmp_path):
     rig = scenario(tmp_path / "loaded.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {}), "Contact": ("ContactEHL", {}),
-        "Body": ("VerticalDynamics", {"load_amplitude": 9000.0, "load_frequency": 4500.0}),
+        "Carriage": ("VerticalDynamics", {"load_amplitude": 9000.0, "load_frequency": 4500.0}),
         "Friction": ("FrictionMixedEHL", {}),
     }, [("Feed.u", "Contact.u"), *RIG_WIRING, *FRICTION_WIRING], stop=2e-3, step=2e-6)
     coarse, fine = (monolithic.simulate(rig, rtol=rtol) for rtol in (1e-8, 1e-10))
@@ -88,8 +88,8 @@ def test_tighter_tolerance_changes_the_loaded_rig_little(fmu_dir, tmp_path):
     assert fine.nfev > coarse.nfev > 0 and fine.wall_time > 0.0
     assert set(fine.columns) == {f"{inst}.{v.name}" for inst, variables in rig.variables.items()
                                  for v in variables.values() if v.causality == "output"}
-    assert fine.units["Contact.F_upper"] == "N" and fine.units["Body.y_ddot"] == "m/s2"
-    for name, bound in (("Contact.F_upper", 2e-6), ("Body.y", 2e-6), ("Contact.h_upper", 2e-5),
+    assert fine.units["Contact.F_upper"] == "N" and fine.units["Carriage.y_ddot"] == "m/s2"
+    for name, bound in (("Contact.F_upper", 2e-6), ("Carriage.y", 2e-6), ("Contact.h_upper", 2e-5),
                         ("Friction.F_friction", 2e-5)):
         error = np.max(np.abs(coarse.columns[name] - fine.columns[name]))
         assert error < bound * np.ptp(fine.columns[name]), name
@@ -102,10 +102,10 @@ def test_film_relaxes_to_the_steady_film_at_constant_feed_velocity(fmu_dir, tmp_
     rig = scenario(tmp_path / "film.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {"profile": "constant", "velocity": u}),
         "Contact": ("ContactEHL", {"damping": 2e4}),
-        "Body": ("VerticalDynamics", {"load_static": 5000.0}),
+        "Carriage": ("VerticalDynamics", {"load_static": 5000.0}),
     }, [("Feed.u", "Contact.u"), *RIG_WIRING], stop=5e-3, step=1e-5)
     ref = monolithic.simulate(rig)
-    _, _, h_upper, h_lower = guideway.quasi_static_state(guideway.Guideway(), ref.columns["Body.y"], u)
+    _, _, h_upper, h_lower = guideway.quasi_static_state(guideway.Guideway(), ref.columns["Carriage.y"], u)
     for h, steady in ((ref.columns["Contact.h_upper"], h_upper), (ref.columns["Contact.h_lower"], h_lower)):
         change = abs(h[-1] - h[0])
         assert change > 1e-2 * h[0]
@@ -129,11 +129,11 @@ def _third_party_copy(fmu, path):
     ("third_party", r"component 'Other': FMU ThirdParty.fmu \(model identifier 'ThirdParty'\) cannot"),
     ("feed_input", r"component 'Feed' \(FeedKinematics\): cannot be modelled: profile 'input'"),
     ("bad_parameter", r"component 'Contact' \(ContactEHL\): .*damping must be >= 0"),
-    ("algebraic_loop", r"algebraic loop (Body -> Contact -> Body|Contact -> Body -> Contact)"),
+    ("algebraic_loop", r"algebraic loop (Carriage -> Contact -> Carriage|Contact -> Carriage -> Contact)"),
 ])
 def test_unsupported_component_or_wiring_is_refused_naming_the_component(fmu_dir, tmp_path, case, message):
     components = {"Feed": ("FeedKinematics", {}), "Contact": ("ContactEHL", {}),
-                  "Body": ("VerticalDynamics", {}), "Friction": ("FrictionCoulomb", {})}
+                  "Carriage": ("VerticalDynamics", {}), "Friction": ("FrictionCoulomb", {})}
     wiring = [("Feed.u", "Contact.u"), *RIG_WIRING, ("Feed.u", "Friction.u"),
               ("Contact.F_upper", "Friction.F_upper"), ("Contact.F_lower", "Friction.F_lower")]
     if case == "third_party":
@@ -142,7 +142,7 @@ def test_unsupported_component_or_wiring_is_refused_naming_the_component(fmu_dir
     elif case == "feed_input":
         components["Feed"] = ("FeedKinematics", {"profile": "input"})
     elif case == "algebraic_loop":  # y_ddot feeds through F_contact, which feeds through y
-        wiring[wiring.index(("Body.y", "Contact.y"))] = ("Body.y_ddot", "Contact.y")
+        wiring[wiring.index(("Carriage.y", "Contact.y"))] = ("Carriage.y_ddot", "Contact.y")
     else:
         components["Contact"] = ("ContactEHL", {"damping": -1.0})
     rig = scenario(tmp_path / f"{case}.toml", fmu_dir, components, wiring, stop=1e-4)
@@ -153,10 +153,10 @@ def test_unsupported_component_or_wiring_is_refused_naming_the_component(fmu_dir
 def test_generic_assembly_unconnected_force_is_free_fall_hand_calculation(fmu_dir, tmp_path):
     # F_contact unconnected stays at its start value 0: y = v0 t + g t^2 / 2.
     rig = scenario(tmp_path / "fall.toml", fmu_dir, {
-        "Body": ("VerticalDynamics", {"y_dot_start": 0.1})}, [], stop=1e-2, step=1e-3)
+        "Carriage": ("VerticalDynamics", {"y_dot_start": 0.1})}, [], stop=1e-2, step=1e-3)
     ref = monolithic.simulate(rig)
     t = ref.time
-    np.testing.assert_allclose(ref.columns["Body.y"], 0.1 * t + 0.5 * carriage.STANDARD_GRAVITY * t**2,
+    np.testing.assert_allclose(ref.columns["Carriage.y"], 0.1 * t + 0.5 * carriage.STANDARD_GRAVITY * t**2,
                                rtol=1e-9, atol=1e-15)
 
 
@@ -191,7 +191,7 @@ def test_fast_feed_velocity_equals_the_profile(profile):
 
 def test_times_must_increase_from_the_start(fmu_dir, tmp_path):
     rig = scenario(tmp_path / "t.toml", fmu_dir, {"Contact": ("ContactDryHertz", {}),
-                                                  "Body": ("VerticalDynamics", {})}, RIG_WIRING, stop=1e-4)
+                                                  "Carriage": ("VerticalDynamics", {})}, RIG_WIRING, stop=1e-4)
     ref = monolithic.simulate(rig, times=[2e-5, 5e-5])
     np.testing.assert_array_equal(ref.time, [2e-5, 5e-5])
     for times in ([-1e-5, 5e-5], [5e-5, 2e-5]):

@@ -23,18 +23,18 @@ equal system: the one scenario writer. The format (tables and keys, all SI units
     parameters = { preload = 9200.0 }   # parameters (or inputs' start values) by name
 
     [[connections]]
-    from = "Body.y"                 # <instance>.<output>
+    from = "Carriage.y"                 # <instance>.<output>
     to = "Contact.y"                # <instance>.<input>
 
     [[tangents]]                    # stiff loops: the stabilised algorithm only
     force = "Contact.F_contact"     # feedthrough output of the stiff component
     position = "Contact.y"          # the input it depends on (stiffness = dforce/dposition)
     stiffness = "Contact.K_contact" # an output, or "fd" for a finite difference by the master
-    to_stiffness = "Body.K_contact" # the consumer's input that takes the stiffness
+    to_stiffness = "Carriage.K_contact" # the consumer's input that takes the stiffness
     velocity = "Contact.y_dot"      # optional: the same for the damping dforce/dvelocity
     damping = "Contact.C_contact"
-    to_damping = "Body.C_contact"
-    model = { law_force_1um = "Body.law_force_1um" }   # optional: further outputs of the force's
+    to_damping = "Carriage.C_contact"
+    model = { law_force_1um = "Carriage.law_force_1um" }   # optional: further outputs of the force's
                                     #   instance (an interface model of the force over the step,
                                     #   such as its law) -> consumer inputs
     settings = { interpolate_inputs = true }   # optional: parameters of the force's instance
@@ -45,8 +45,8 @@ equal system: the one scenario writer. The format (tables and keys, all SI units
     interval = 1e-5                 # optional, s: record every macro step not closer than this
 
     [plots]                         # optional; each a list of <instance>.<variable>
-    time = ["Body.y"]               # time histories
-    spectrum = ["Body.y"]           # FFT amplitude spectra
+    time = ["Carriage.y"]               # time histories
+    spectrum = ["Carriage.y"]           # FFT amplitude spectra
     film = ["Contact.h_upper"]      # film thickness histories (in micrometres)
     envelope = ["Contact.F_upper"]  # running max/min over `window`
     skip = 0.01                     # s of transient left out of the spectra
