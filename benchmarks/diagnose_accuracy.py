@@ -11,49 +11,39 @@ by default) and, unless --no-emps, the results on the two EMPS records.
 from __future__ import annotations
 
 import argparse
-import os
 import json
+import os
 import subprocess
 import sys
+import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
 
 from guideway_fmu.diagnose import truth
-
-CHILD = """
-import json, sys, time, warnings
-import numpy as np
-warnings.simplefilter("ignore")
-from guideway_fmu.diagnose import truth
-from guideway_fmu.diagnose.workflow import diagnose
-run, effect, seed, noise, samples, fmus = sys.argv[1:7]
-info = truth.make_run(run, effect, np.random.default_rng(int(seed)), noise=float(noise),
-                      n_samples=int(samples))
-start = time.perf_counter()
-d = diagnose(run, run + "_out", fmu_dir=fmus)
-print(json.dumps({"expected": info.expected, "named": d["missing_effect"],
-                  "gap_before": d["gap_before"], "gap_after": d["gap_after"],
-                  "noise_floor": d["noise_floor"], "seconds": time.perf_counter() - start}))
-"""
-EMPS = """
-import json, sys, time, warnings
-warnings.simplefilter("ignore")
-from guideway_fmu.diagnose.workflow import diagnose
-start = time.perf_counter()
-d = diagnose(sys.argv[1], sys.argv[2], fmu_dir=sys.argv[3])
-d["seconds"] = time.perf_counter() - start
-print(json.dumps(d))
-"""
+from guideway_fmu.diagnose.trials import run_batch
 
 
-def child(script, *args) -> dict:
-    done = subprocess.run([sys.executable, "-c", script, *map(str, args)], capture_output=True,
-                          text=True)
+
+def diagnose_trial(out, fmus, effect, seed, noise, samples) -> dict:
+    """One synthetic trial in its own process; {"error": last line} if it fails."""
+    try:
+        return run_batch(out, fmus, [{"name": f"{effect}_{seed}", "effect": effect, "seed": seed,
+                                      "noise": noise, "n_samples": samples}])[0]
+    except RuntimeError as failure:
+        return {"error": str(failure).strip().splitlines()[-1]}
+
+
+def diagnose_record(run, out, fmus) -> dict:
+    """The diagnosis of a recorded run through the command line, with its wall time [s]."""
+    started = time.perf_counter()
+    done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "diagnose", str(run),
+                           "--out", str(out), "--fmus", str(fmus)], capture_output=True, text=True)
     if done.returncode != 0:
         return {"error": done.stderr.strip().splitlines()[-1] if done.stderr else "crashed"}
-    return json.loads(done.stdout.strip().splitlines()[-1])
+    return {**json.loads((Path(out) / "diagnosis.json").read_text()),
+            "seconds": time.perf_counter() - started}
 
 
 def main(argv=None) -> None:
@@ -75,9 +65,8 @@ def main(argv=None) -> None:
 
     jobs = [(effect, seed) for seed in range(1, args.draws + 1) for effect in truth.EFFECTS]
     with ThreadPoolExecutor(args.jobs) as pool:
-        results = list(pool.map(lambda job: (job, child(
-            CHILD, args.out / f"{job[0]}_{job[1]}", job[0], job[1], args.noise, args.samples,
-            fmus)), jobs))
+        results = list(pool.map(lambda job: (job, diagnose_trial(
+            args.out, fmus, job[0], job[1], args.noise, args.samples)), jobs))
 
     answers = sorted(set(truth.EXPECTED.values()))
     columns = answers + ["error"]
@@ -110,7 +99,7 @@ def main(argv=None) -> None:
               f"median {np.median(seconds):.1f} s, max {np.max(seconds):.1f} s")
     if not args.no_emps and args.data is not None:
         for name in ("emps-identification", "emps-validation"):
-            d = child(EMPS, Path(args.data) / name, args.out / name, fmus)
+            d = diagnose_record(Path(args.data) / name, args.out / name, fmus)
             if "error" in d:
                 print(f"{name}: {d['error']}")
                 continue

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.signal import butter, sosfiltfilt
 
-from guideway_fmu.diagnose import locate, truth, workflow
+from guideway_fmu.diagnose import decide, locate, truth
 from guideway_fmu.diagnose.candidates import Context, PreloadLoss
 from guideway_fmu.diagnose.run_io import load_run
 
@@ -34,7 +34,7 @@ def test_preload_wear_distance_between_grid_values_matches_truth_noise_free(tmp_
                          n_samples=4000)
     truth.write_run(tmp_path / "run", run)
     measured = load_run(tmp_path / "run")
-    motion = workflow.motion_of(measured)
+    motion = decide.motion_of(measured)
     ctx = Context.of(measured, motion)
     candidate = PreloadLoss()
     grid = np.array([s["wear_distance"] for s in candidate.settings(ctx)])
@@ -61,17 +61,17 @@ def band_noise_run(tmp_path_factory):
 
 
 def test_large_gap_nothing_explains_is_unknown_with_a_law(band_noise_run):
-    named = workflow.name_effect(band_noise_run)
-    assert named.cross_gap > workflow.UNRESOLVED
+    named = decide.decide(band_noise_run)
+    assert named.cross_gap > decide.UNRESOLVED
     assert named.effect == "unknown" and named.equation
-    assert all(score < workflow.SCORE_MIN for score, _, _ in named.ranked)
+    assert all(score < decide.SCORE_MIN for score, _, _ in named.ranked)
 
 
 def test_unresolved_threshold_decides_that_answer(band_noise_run, monkeypatch):
     # the same run with the threshold out of reach: the small-gap rule answers none, so the
     # answer above comes from the gap's size, not from a law that explains it
-    monkeypatch.setattr(workflow, "UNRESOLVED", np.inf)
-    assert workflow.name_effect(band_noise_run).effect == "none"
+    monkeypatch.setattr(decide, "UNRESOLVED", np.inf)
+    assert decide.decide(band_noise_run).effect == "none"
 
 
 def _ranked(**scores):
@@ -93,9 +93,9 @@ def test_position_table_gives_way_only_on_single_pass_records_and_in_a_tie(back_
                           distance=np.concatenate(([0.0], np.cumsum(np.abs(np.diff(x))))))
     ranked = _ranked(position_dependent_friction=1000.0, ball_to_ball_contact=ball_score,
                      preload_loss=400.0)
-    index, twins = workflow._same_path_choice(ctx, np.ones(t.size, bool), ranked)
+    index, twins = decide._same_path_choice(ctx, np.ones(t.size, bool), ranked)
     assert ranked[index][1].effect == chosen
-    tie = not back_and_forth and abs(ball_score - 1000.0) < workflow.SCORE_MIN
+    tie = not back_and_forth and abs(ball_score - 1000.0) < decide.SCORE_MIN
     assert twins == (["position_dependent_friction"] if tie else [])
 
 
@@ -109,12 +109,12 @@ def test_single_pass_ball_run_named_ball_to_ball_with_the_evidence_shared(tmp_pa
     x = run.truth["position"]
     cut = int(np.argmax(x < np.maximum.accumulate(x) - 2e-3))
     truth.write_run(tmp_path / "run", replace(run, columns={k: v[:cut] for k, v in run.columns.items()}))
-    named = workflow.name_effect(tmp_path / "run")
+    named = decide.decide(tmp_path / "run")
     usable, ctx = named.usable, named.ctx
-    assert abs(np.corrcoef(ctx.distance[usable], ctx.motion.x[usable])[0, 1]) > workflow.SAME_PATH
+    assert abs(np.corrcoef(ctx.distance[usable], ctx.motion.x[usable])[0, 1]) > decide.SAME_PATH
     scores = {f.effect: s for s, f, _ in named.ranked}
     assert named.ranked[0][1].effect == "position_dependent_friction"
-    assert scores["position_dependent_friction"] - scores["ball_to_ball_contact"] < workflow.SCORE_MIN
+    assert scores["position_dependent_friction"] - scores["ball_to_ball_contact"] < decide.SCORE_MIN
     assert named.effect == "ball_to_ball_contact"
     assert named.not_told_apart == ["position_dependent_friction"]
     assert named.confidence == pytest.approx(0.5, abs=1e-6)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.signal import savgol_coeffs
 
-from guideway_fmu.diagnose.signals import (ORDER, channel_noise, derive_motion, noise_rms,
+from guideway_fmu.diagnose.signals import (ORDER, Derivation, channel_noise, derive_motion, noise_rms,
                                             smooth_channel)
 
 
@@ -40,7 +40,8 @@ def test_quantised_acceleration_channel_without_position_is_smoothed_and_says_so
     v = (x[2:] - x[:-2]) / 2e-3
     a = (x[2:] - 2 * x[1:-1] + x[:-2]) / 1e-6
     motion = derive_motion(t[1:-1], {"feed_velocity": v, "feed_acceleration": a}, None)
-    assert motion.how["feed_acceleration"].startswith("measured, smoothed")
+    how = motion.how["feed_acceleration"]
+    assert how.source == "" and how.derivative == 0 and how.window >= 5  # measured, smoothed
     truth = -(2 * np.pi * 0.5) ** 2 * 0.02 * np.sin(2 * np.pi * 0.5 * t[1:-1])
     inner = slice(50, -50)
     assert np.sqrt(np.mean((motion.a - truth)[inner] ** 2)) < 0.2 * np.sqrt(np.mean((a - truth)[inner] ** 2))
@@ -61,7 +62,10 @@ def test_acceleration_window_is_the_shortest_within_the_noise_tolerance_by_hand(
     t, x, truth = _sine_counts(1e-6)
     tolerance = 0.01  # m/s^2
     motion = derive_motion(t, {"feed_position": x}, tolerance)
-    window = int(motion.how["feed_acceleration"].split(" samples")[0].rsplit(" ", 1)[1])
+    how = motion.how["feed_acceleration"]
+    assert (how.source, how.derivative, how.order, how.noise_limit) == ("feed_position", 2, ORDER,
+                                                                        tolerance)
+    window = how.window
     noise = [1e-6 / np.sqrt(12.0) * np.linalg.norm(savgol_coeffs(w, ORDER, deriv=2, delta=1e-3))
              for w in (window - 2, window)]
     assert noise[1] <= tolerance < noise[0]
@@ -75,7 +79,8 @@ def test_acceleration_of_an_exact_position_takes_the_shortest_window_limiting_ca
     # the sine's Taylor remainder
     t, x, truth = _sine_counts(0.0)
     motion = derive_motion(t, {"feed_position": x}, 1e-3)
-    assert f"order {ORDER}, {ORDER + 2} samples" in motion.how["feed_acceleration"]
+    how = motion.how["feed_acceleration"]
+    assert (how.order, how.window) == (ORDER, ORDER + 2)
     error = np.abs(motion.a - truth) / np.max(np.abs(truth))
     assert np.max(error[ORDER:-ORDER]) < 1e-6  # the cubic fit at the ends: within 1e-4 there
     assert np.max(error) < 1e-4
@@ -85,7 +90,7 @@ def test_acceleration_from_position_beats_the_rigs_channel_against_true_motion()
     # seed 1003, jittered time stamps, 0.5 % force noise: the rig's double centred difference
     # over +-3 samples lowers the ramps; the order-7 derivative of the counts, at the window the
     # workflow's tolerance gives, errs by less than half as much
-    from guideway_fmu.diagnose import truth, workflow
+    from guideway_fmu.diagnose import decide, truth
     from guideway_fmu.diagnose.run_io import load_run
 
     run = truth.simulate("none", np.random.default_rng(1003), noise=0.005, uneven=True,
@@ -93,13 +98,13 @@ def test_acceleration_from_position_beats_the_rigs_channel_against_true_motion()
     true, moving = run.truth["acceleration"], run.truth["moving"]
     with tempfile.TemporaryDirectory() as folder:
         truth.write_run(f"{folder}/run", run)
-        motion = workflow.motion_of(load_run(f"{folder}/run"))
+        motion = decide.motion_of(load_run(f"{folder}/run"))
 
     def rms(a):
         return np.sqrt(np.mean((a - true)[moving] ** 2))
 
     assert rms(motion.a) < 0.5 * rms(run.columns["feed_acceleration"])
-    assert "the recorded feed_acceleration is not used" in motion.how["feed_acceleration"]
+    assert motion.how["feed_acceleration"].recorded_unused
 
 
 def test_acceleration_gain_undoes_the_attenuation_of_short_ramps_against_true_motion():
@@ -120,24 +125,24 @@ def test_acceleration_gain_undoes_the_attenuation_of_short_ramps_against_true_mo
     motion = derive_motion(run.columns["time"], {c: run.columns[c] for c in
                                                  ("feed_velocity", "feed_acceleration")}, None)
     assert abs(gain(motion.a) - 1.0) < 0.7 * before
-    assert "scaled by" in motion.how["feed_acceleration"]
+    assert motion.how["feed_acceleration"].gain > 1.0
     motion = derive_motion(run.columns["time"], {c: run.columns[c] for c in
                                                  ("feed_position", "feed_velocity",
                                                   "feed_acceleration")}, None)
     assert abs(gain(motion.a) - 1.0) < min(0.03, before / 3)
-    assert "scaled by" in motion.how["feed_acceleration"]
+    assert motion.how["feed_acceleration"].gain > 1.0
 
 
 def test_dequantised_counts_lie_closer_to_the_true_position_than_the_counts():
     # seed 1000, 1 um encoder: the counts err by the rounding noise q / sqrt(12) = 0.29 um; the
     # order-7 filter at the acceleration's window takes most of it out (measured 0.11 um)
-    from guideway_fmu.diagnose import truth, workflow
+    from guideway_fmu.diagnose import decide, truth
     from guideway_fmu.diagnose.run_io import load_run
 
     run = truth.simulate("none", np.random.default_rng(1000), noise=0.005, n_samples=4000)
     with tempfile.TemporaryDirectory() as folder:
         truth.write_run(f"{folder}/run", run)
-        motion = workflow.motion_of(load_run(f"{folder}/run"))
+        motion = decide.motion_of(load_run(f"{folder}/run"))
     inner, true = ~motion.ends, run.truth["position"]
 
     def rms(x):
@@ -145,7 +150,7 @@ def test_dequantised_counts_lie_closer_to_the_true_position_than_the_counts():
 
     assert rms(run.columns["feed_position"]) == pytest.approx(1e-6 / np.sqrt(12.0), rel=0.05)
     assert rms(motion.x) < 0.5 * 1e-6 / np.sqrt(12.0)
-    assert "count steps are taken out" in motion.how["feed_position"]
+    assert motion.how["feed_position"].dequantised
 
 
 def test_rest_is_where_the_encoder_has_not_moved_and_slow_motion_is_not_by_hand():
@@ -164,8 +169,8 @@ def test_rest_is_where_the_encoder_has_not_moved_and_slow_motion_is_not_by_hand(
     motion = derive_motion(t, {"feed_position": counts, "feed_velocity": v}, None)
     noise_limit = 3.0 * max(1e-6 / 6e-3 / np.sqrt(12.0), 1e-3 * np.max(np.abs(motion.v)))
     assert noise_limit > 3.0 * 1e-6 / 6e-3 / np.sqrt(12.0)
-    assert f"{noise_limit:.4g} m/s" in motion.how["standstill"]
-    assert "position lies within 5e-07 m" in motion.how["standstill"]
+    assert motion.standstill_speed == pytest.approx(noise_limit, rel=1e-9)
+    assert motion.rest_band == pytest.approx(5e-7, rel=1e-9)
     home = (counts == 0.0) | (counts == counts[-1])
     assert np.any(home & (np.abs(motion.v) > noise_limit))  # the velocity alone: moving
     first, last = np.flatnonzero(~home)[[0, -1]]
@@ -187,11 +192,11 @@ def test_smoothed_load_channel_keeps_its_signal_and_sheds_its_noise_against_trut
     smooth, how = smooth_channel(t, noisy)
     error = np.sqrt(np.mean((smooth - load)[300:-300] ** 2))
     assert error < share * 5.0
-    assert "smoothed" in how
+    assert how.window >= 5 and how.noise > 0.0  # smoothed for its noise
 
 
 def test_noise_free_slow_load_channel_is_left_as_recorded_limiting_case():
     t = np.arange(4000) * 1e-3
     load = 800.0 + 200.0 * np.sin(2 * np.pi * 0.2 * t)
     kept, how = smooth_channel(t, load)
-    assert np.array_equal(kept, load) and how == "measured"
+    assert np.array_equal(kept, load) and how == Derivation()  # measured, kept

@@ -6,12 +6,11 @@ from __future__ import annotations
 import csv
 import json
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
+from guideway_fmu.diagnose.trials import run_batch
 from guideway_fmu.diagnose.workflow import diagnose
 
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation in a subprocess
@@ -22,31 +21,16 @@ CASES = {  # run name -> (hidden effect, seed)
     "quiet": ("none", 13),
     "load": ("normal_load_friction", 14),
 }
-SCRIPT = """
-import json, sys, warnings
-import numpy as np
-warnings.simplefilter("ignore")
-from guideway_fmu.diagnose import truth
-from guideway_fmu.diagnose.workflow import diagnose
-root, cases = sys.argv[1], json.loads(sys.argv[2])
-out = {}
-for name, (effect, seed) in cases.items():
-    info = truth.make_run(f"{root}/{name}", effect, np.random.default_rng(seed), noise=0.01,
-                          n_samples=3000)
-    out[name] = {"expected": info.expected,
-                 "diagnosis": diagnose(f"{root}/{name}", f"{root}/{name}_out", fmu_dir=f"{root}/fmus")}
-print(json.dumps(out))
-"""
 NUMBER = re.compile(r"^-?\d+(\.\d+)?$")
 
 
 @pytest.fixture(scope="module")
-def results(tmp_path_factory):
+def results(tmp_path_factory, fmu_dir):
     root = tmp_path_factory.mktemp("diagnose")
-    done = subprocess.run([sys.executable, "-c", SCRIPT, str(root), json.dumps(CASES)],
-                          capture_output=True, text=True, timeout=600)
-    assert done.returncode == 0, done.stderr[-3000:]
-    return root, json.loads(done.stdout.strip().splitlines()[-1])
+    summaries = run_batch(root, fmu_dir, [
+        {"name": name, "effect": effect, "seed": seed, "noise": 0.01, "n_samples": 3000}
+        for name, (effect, seed) in CASES.items()], timeout=600)
+    return root, {s["name"]: s for s in summaries}
 
 
 @pytest.mark.parametrize("name", list(CASES))

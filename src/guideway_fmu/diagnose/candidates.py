@@ -1,5 +1,11 @@
 """The baseline model of a horizontal drive rig and the candidate extensions, one per effect.
 
+Every subclass of :class:`Candidate` that names an ``effect`` registers itself in CANDIDATES, the
+one list the workflow, the truth generator and the report read: a new effect is a law in
+physics/friction_effects.py, a friction FMU in components/friction_effects.py and one class here
+(effect name, residual signal, FMU name, law, running-distance flag, columns and physical
+parameters).
+
 Every model predicts the compared channel as a fixed part (m a for drive_force, 0 for
 friction_force) plus a linear combination of columns built from the physics laws
 (physics/friction_effects.py) plus a constant offset (the sensor zero). A candidate may have a few
@@ -21,7 +27,7 @@ from scipy.optimize import minimize_scalar
 from ..physics import friction_effects
 from ..physics.roller_friction import CoulombParams, coulomb_friction, regularised_sign
 from .run_io import MeasuredRun
-from .signals import SIGN_WIDTH, Motion, smooth_channel
+from .signals import SIGN_WIDTH, Derivation, Motion, smooth_channel
 
 GRAVITY = 9.80665  # m/s^2
 SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
@@ -41,13 +47,13 @@ class Context:
     sign: np.ndarray = field(init=False)
     distance: np.ndarray = field(init=False)
     load: np.ndarray | None = field(init=False)  # N, the normal_force channel, smoothed
-    load_how: str = field(init=False)
+    load_how: Derivation | None = field(init=False)  # None: not recorded
 
     def __post_init__(self):
         self.sign = regularised_sign(self.motion.v, self.velocity_tolerance)
         self.distance = friction_effects.running_distance(self.motion.x)
         self.load, self.load_how = (smooth_channel(self.motion.time, self.run.columns["normal_force"])
-                                    if "normal_force" in self.run.columns else (None, "not recorded"))
+                                    if "normal_force" in self.run.columns else (None, None))
 
     @classmethod
     def of(cls, run: MeasuredRun, motion: Motion) -> "Context":
@@ -83,14 +89,32 @@ class Fit:
     uses_position: bool  # the friction FMU takes the feed position x
 
 
+#: effect name -> candidate class, in the order of definition (the order of ties in the ranking)
+CANDIDATES: dict[str, type["Candidate"]] = {}
+
+
 class Candidate:
     """Baseline (effect "none") or one effect: settings, columns and the FMU form."""
 
     effect = "none"
     signal = "time"  # the signal its residual shows against (plots)
     fmu_name = "FrictionCoulomb"
-    uses_position = False
+    law = staticmethod(coulomb_friction)  # the physics law its columns and its FMU evaluate
+    uses_position = False  # the friction FMU takes the feed position x
+    running_distance = False  # the effect follows the running distance (not the position)
+    guide_types: tuple | None = None  # [guideway] types it applies to (None: every rig)
     continuous: tuple = ()  # setting keys refined between grid values after the grid search
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "effect" in cls.__dict__:
+            CANDIDATES[cls.effect] = cls
+
+    @classmethod
+    def applies(cls, run: MeasuredRun) -> bool:
+        """Whether the effect can occur on the rig of ``run``."""
+        return (cls.guide_types is None
+                or run.sections.get("guideway", {}).get("type") in cls.guide_types)
 
     def settings(self, ctx: Context) -> list[dict]:
         return [{}]
@@ -99,7 +123,7 @@ class Candidate:
         """Columns (n, k) of the drive-force contribution of the law's linear parameters."""
         unit = CoulombParams(coefficient=1.0, rollers_per_groove=1,
                              velocity_tolerance=ctx.velocity_tolerance)  # level 2 (0.25 + 0.25) = 1
-        return -coulomb_friction(0.25, 0.25, ctx.motion.v, unit)[:, None]
+        return -self.law(0.25, 0.25, ctx.motion.v, unit)[:, None]
 
     def physical(self, ctx: Context, setting: dict, coef: np.ndarray) -> tuple[dict, dict] | None:
         """(parameters, friction FMU parameters) of the fitted coefficients, None if unphysical."""
@@ -186,6 +210,7 @@ class Lubrication(Candidate):
     """Stribeck + viscous friction; settings: Stribeck velocity, shape and viscous exponents."""
 
     effect, signal, fmu_name = "lubrication", "speed", "FrictionStribeck"
+    law = staticmethod(friction_effects.stribeck_friction)
     continuous = ("stribeck_velocity",)
 
     def settings(self, ctx):
@@ -198,8 +223,7 @@ class Lubrication(Candidate):
         v, tol = ctx.motion.v, ctx.velocity_tolerance
         shape = (setting["stribeck_velocity"], setting["stribeck_exponent"], setting["viscous_exponent"])
         unit = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]  # coulomb, static, viscous
-        return np.column_stack([-friction_effects.stribeck_friction(v, c, s, shape[0], cv, tol,
-                                                                 shape[1], shape[2])
+        return np.column_stack([-self.law(v, c, s, shape[0], cv, tol, shape[1], shape[2])
                                 for c, s, cv in unit])
 
     def physical(self, ctx, setting, coef):
@@ -215,12 +239,11 @@ class Lubrication(Candidate):
 class PreslidingHysteresis(Candidate):
     """Up to three Dahl elements in parallel (a Maxwell-slip of Dahl elements); settings: their
     pre-sliding distances (equal distances make one element). Two exponential elements miss the
-    long build-up of measured pre-sliding; a third takes it (held-out gap 1.32 -> 1.20 and
-    1.23 -> 1.17 noise floors on two synthetic runs whose truth is a power-law Dahl blend, at
-    0.5 % noise)."""
+    long, power-law-like build-up of measured pre-sliding; a third takes it."""
 
     effect, signal, fmu_name, uses_position = ("presliding_hysteresis", "displacement_since_reversal",
                                                "FrictionDahl", True)
+    law = staticmethod(friction_effects.dahl_friction)
     continuous = ("presliding_distance", "second_distance", "third_distance")
     keys = continuous
     _states: tuple = ()
@@ -280,7 +303,7 @@ class PreslidingHysteresis(Candidate):
         return list(dict.fromkeys(setting[k] for k in PreslidingHysteresis.keys))
 
     def columns(self, ctx, setting):
-        return np.column_stack([-friction_effects.dahl_friction(self.state(ctx, d), 1.0)
+        return np.column_stack([-self.law(self.state(ctx, d), 1.0)
                                 for d in self._elements(setting)])
 
     def physical(self, ctx, setting, coef):
@@ -367,6 +390,8 @@ class PreloadLoss(Candidate):
 
     effect, signal, fmu_name, uses_position = ("preload_loss", "running_distance",
                                                "FrictionPreloadLoss", True)
+    law = staticmethod(friction_effects.preload_loss_friction)
+    running_distance = True
     continuous = ("wear_distance",)
 
     def settings(self, ctx):
@@ -375,8 +400,8 @@ class PreloadLoss(Candidate):
 
     def columns(self, ctx, setting):
         v, d, w, tol = ctx.motion.v, ctx.distance, setting["wear_distance"], ctx.velocity_tolerance
-        kept = -friction_effects.preload_loss_friction(v, d, 1.0, 0.0, w, tol)  # level 1 throughout
-        fading = -friction_effects.preload_loss_friction(v, d, 1.0, 1.0, w, tol)  # exp(-D / w)
+        kept = -self.law(v, d, 1.0, 0.0, w, tol)  # level 1 throughout
+        fading = -self.law(v, d, 1.0, 1.0, w, tol)  # exp(-D / w)
         return np.column_stack([kept, fading])
 
     def physical(self, ctx, setting, coef):
@@ -397,6 +422,8 @@ class BallToBall(_Table):
     effect, signal, fmu_name, uses_position = ("ball_to_ball_contact", "running_distance",
                                                "FrictionBallToBall", True)
     law = staticmethod(friction_effects.ball_to_ball_friction)
+    running_distance = True
+    guide_types = ("ball",)
 
     def along(self, ctx):
         return ctx.distance
@@ -409,12 +436,11 @@ class BallToBall(_Table):
 
 
 BASELINE = Candidate()
+#: effects that follow the running distance: on a record passing its positions once they look
+#: like position dependence
+RUNNING_DISTANCE_EFFECTS = tuple(e for e, c in CANDIDATES.items() if c.running_distance)
 
 
 def candidates_for(run: MeasuredRun) -> list[Candidate]:
-    """The candidate extensions of a horizontal drive rig's model (ball guides: ball-to-ball too)."""
-    found = [Lubrication(), PreslidingHysteresis(), PositionDependent(), UnmodeledMass(),
-             PreloadLoss()]
-    if run.sections.get("guideway", {}).get("type") == "ball":
-        found.append(BallToBall())
-    return found
+    """The registered candidate extensions that apply to the rig of ``run``."""
+    return [cls() for cls in CANDIDATES.values() if cls.applies(run)]

@@ -1,4 +1,5 @@
-"""The rig model as a co-simulation scenario (cosim/system.py format) and its run through the FMUs.
+"""Step 5 of the discrepancy workflow: the named model as a co-simulation scenario
+(cosim/system.py format), run through the FMUs.
 
 Three FMUs, stepped Gauss-Seidel at the record's median sampling interval:
 FeedKinematics (profile "replay" of the motion the model is driven with) -> a friction FMU
@@ -8,12 +9,16 @@ FeedKinematics (profile "replay" of the motion the model is driven with) -> a fr
 from __future__ import annotations
 
 import csv
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..components import build
 from ..cosim import master, system as cosim_system
+from . import locate
 from .candidates import Context, Fit
+from .decide import Naming
 
 RIG_FMUS = ("FeedKinematics", "HorizontalRig")
 
@@ -57,3 +62,41 @@ def cosimulate(ctx: Context, scenario: Path) -> tuple[np.ndarray, float]:
     rec = result.recording
     values = rec.columns[f"Rig.{ctx.run.channel}"]
     return np.interp(ctx.motion.time, rec.time, values), result.wall_time
+
+
+@dataclass
+class Realisation:
+    """The named model run through the FMUs: the compared channel of the baseline and of the
+    augmented model at the samples (the baseline's where nothing is named), the scenario, the
+    co-simulation's wall time [s] and its largest deviation from the vectorised model over the
+    held-out range of the channel [-]."""
+
+    baseline: np.ndarray
+    augmented: np.ndarray
+    scenario: Path
+    wall_time: float
+    agreement: float
+    model: Fit
+
+    def gaps(self, naming: Naming) -> tuple[float, float]:
+        """Held-out gaps (before, after) of the baseline and the augmented model."""
+        y, held = naming.ctx.y, naming.held
+        return locate.gap(y, self.baseline, held), locate.gap(y, self.augmented, held)
+
+
+def realise(naming: Naming, out: Path, fmu_dir: Path) -> Realisation:
+    """Write the replay table and the scenario of the named model (the baseline for none or
+    unknown) into ``out``, build the FMUs it needs into ``fmu_dir`` and co-simulate it."""
+    ctx, winner = naming.ctx, naming.winner
+    model = winner or naming.baseline
+    build.ensure(fmu_dir, [*RIG_FMUS, model.fmu])
+    replay = write_replay(ctx, out / "replay.csv")
+    toml = write_scenario(
+        ctx, model, out / ("augmented.toml" if winner else "baseline.toml"), replay, fmu_dir,
+        f"augmented_{naming.effect}" if winner else "baseline",
+        f"{naming.run.path.name}: baseline" + (f" + {naming.effect}" if winner else ""))
+    cosim, wall = cosimulate(ctx, toml)
+    agreement = float(np.max(np.abs(cosim - model.prediction)[naming.usable])
+                      / np.ptp(ctx.y[naming.held]))
+    baseline = naming.baseline.prediction
+    return Realisation(baseline, cosim if winner else baseline, toml, wall, agreement, model)

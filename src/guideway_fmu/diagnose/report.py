@@ -1,5 +1,7 @@
-"""What diagnose writes: diagnosis.json and fit.csv (spec: measured-run.md), PNG plots and a
-self-contained report.html (plots inlined as base64)."""
+"""Step 6 of the discrepancy workflow, what diagnose writes: diagnosis.json and fit.csv
+(docs/measured-run.md), PNG plots and a self-contained report.html (plots inlined as base64).
+All of the report's prose is written here, from the numbers the decision and the co-simulation
+return."""
 from __future__ import annotations
 
 import base64
@@ -7,11 +9,18 @@ import html
 import json
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from . import locate, plots
+from .candidates import CANDIDATES
+from .decide import Naming
+from .realise import Realisation
+from .signals import AMBIGUOUS, SHORT, STANDSTILL, Derivation
+
+FORMAT = "guideway-diagnosis/1"
+UNITS = {"time": "s", "position": "m", "velocity": "m/s", "speed": "m/s", "acceleration": "m/s2",
+         "time_since_reversal": "s", "displacement_since_reversal": "m", "running_distance": "m"}
+_ORDINAL = {1: "first", 2: "second"}
 
 
 def plain(value) -> str:
@@ -53,67 +62,6 @@ def write_fit(path: Path, time, measured, baseline, augmented) -> Path:
     return path
 
 
-def _save(fig, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
-
-
-def plot_comparison(path, time, measured, baseline, augmented, held, channel, effect) -> Path:
-    """Measured vs baseline vs augmented over the record and in a zoom on one held-out block."""
-    fig, axes = plt.subplots(2, 1, figsize=(10, 6.5))
-    block = np.flatnonzero(held)
-    for ax, sel in ((axes[0], slice(None)), (axes[1], block[: max(len(block) // 10, 20)])):
-        ax.plot(time[sel], measured[sel], ".", ms=1.5, color="0.4", label="measured")
-        ax.plot(time[sel], baseline[sel], lw=1, label="baseline (co-simulation)")
-        if effect not in ("none", "unknown"):
-            ax.plot(time[sel], augmented[sel], lw=1, label=f"+ {effect} (co-simulation)")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"{channel} [N]")
-    axes[0].set_title("whole record")
-    axes[1].set_title("zoom on held-out samples")
-    axes[0].legend(loc="upper right", fontsize=8)
-    return _save(fig, path)
-
-
-def plot_residual(path, signal, name, unit, before, after, mask, effect) -> Path:
-    """Residual (measured - model) against the signal that gave the effect away, with bin means."""
-    fig, ax = plt.subplots(figsize=(10, 4.5))
-    s = signal[mask]
-    ax.plot(s, before[mask], ".", ms=1.5, alpha=0.4, label="baseline residual")
-    if effect not in ("none", "unknown"):
-        ax.plot(s, after[mask], ".", ms=1.5, alpha=0.4, label="augmented residual")
-    edges = np.quantile(s, np.linspace(0, 1, 41))
-    centre = 0.5 * (edges[1:] + edges[:-1])
-    index = np.clip(np.searchsorted(edges, s, side="right") - 1, 0, 39)
-    counts = np.maximum(np.bincount(index, minlength=40), 1)
-    ax.plot(centre, np.bincount(index, before[mask], 40) / counts, "k-", lw=1.5,
-            label="baseline residual, bin means")
-    ax.set_xlabel(f"{name} [{unit}]")
-    ax.set_ylabel("residual [N]")
-    ax.legend(fontsize=8)
-    ax.set_title(f"residual against {name} (held-out samples)")
-    return _save(fig, path)
-
-
-def plot_ranking(path, candidates, gap_before, noise) -> Path:
-    """Cross-validated held-out score (BIC improvement over the baseline) and gap of every
-    candidate."""
-    names = [c["effect"] for c in candidates]
-    fig, axes = plt.subplots(1, 2, figsize=(10, 0.5 * len(names) + 2))
-    axes[0].barh(names, [c["score"] for c in candidates])
-    axes[0].set_xlabel("score: cross-validated held-out BIC, baseline - candidate")
-    axes[0].invert_yaxis()
-    axes[1].barh(names, [c["gap_after"] for c in candidates])
-    axes[1].axvline(gap_before, color="k", ls="--", label="baseline gap")
-    axes[1].axvline(noise, color="r", ls=":", label="noise floor")
-    axes[1].set_xlabel("held-out gap (range-normalised RMS)")
-    axes[1].invert_yaxis()
-    axes[1].legend(fontsize=8)
-    return _save(fig, path)
-
-
 def _table(rows, header) -> str:
     head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
     body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>"
@@ -152,3 +100,142 @@ def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> 
     parts.append("</body></html>")
     path.write_text("\n".join(parts), encoding="utf-8")
     return path
+
+
+def _filter(d: Derivation) -> str:
+    shape = "cubic" if d.order == 3 else f"of order {d.order}"
+    text = (f"Savitzky-Golay, {shape}, {d.window} samples ({d.window * d.step:.4g} s), zero phase "
+            f"(no delay)")
+    return text + ("" if d.uniform else ", on a uniform grid at the median step, cubic splines "
+                                        "there and back")
+
+
+def describe(name: str, d: Derivation | None) -> str:
+    """How the signal ``name`` was obtained, in words."""
+    if d is None:
+        return "not recorded"
+    if d.derivative < 0:
+        text = f"integrated from {d.source} (trapezoid rule, 0 at the start)"
+    elif d.derivative:
+        text = f"derived from {d.source}: {_ORDINAL[d.derivative]} derivative, {_filter(d)}"
+    elif d.window:
+        text = f"measured, smoothed ({_filter(d)})"
+    else:
+        text = "measured"
+    if d.noise_limit is not None:
+        text += (f", the shortest window whose noise from the position stays within "
+                 f"{d.noise_limit:.4g} m/s2 RMS (at most a quarter of a stroke)")
+    if d.noise is not None:
+        text += (f", the longest window whose residual stays within the channel's noise "
+                 f"({d.noise:.4g} RMS)" if d.window else
+                 " (noisy, but even the 5-sample cubic filter takes signal)")
+    if d.dequantised:
+        text += (": the encoder's count steps are taken out (pre-sliding builds up over a few "
+                 "counts)")
+    if d.recorded_unused:
+        text += f"; the recorded {name} is not used (differenced and smoothed by the rig)"
+    if d.gain is not None:
+        text += (f"; scaled by {d.gain:.4g}, the least-squares gain of the {SHORT}-sample second "
+                 f"derivative of feed_position (first of feed_velocity without it) on it")
+    return text
+
+
+def describe_standstill(speed: float, band: float | None) -> str:
+    """When the direction of motion counts as ambiguous, in words."""
+    if band is None:
+        return f"|feed_velocity| <= {speed:.4g} m/s ({STANDSTILL:.0%} of its maximum)"
+    return (f"|feed_velocity| <= {speed:.4g} m/s ({AMBIGUOUS:g} times its noise or the regularised "
+            f"sign's width, at most {STANDSTILL:.0%} of its maximum), and the samples next to such "
+            f"a rest whose position lies within {band:.4g} m of it (the position has not moved; a "
+            f"differenced velocity spreads starts and stops over its window)")
+
+
+def diagnosis_record(naming: Naming, realised: Realisation) -> dict:
+    """The content of diagnosis.json."""
+    before, after = realised.gaps(naming)
+    return {
+        "format": FORMAT, "missing_effect": naming.effect,
+        "confidence": round(naming.confidence, 6), "channel": naming.run.channel,
+        "gap_before": round(before, 8), "gap_after": round(after, 8),
+        "noise_floor": round(naming.noise, 8),
+        "candidates": [{"effect": f.effect, "gap_after": round(g, 8), "score": round(float(s), 3),
+                        "parameters": {k: (round(v, 12) if isinstance(v, float) else v)
+                                       for k, v in f.parameters.items()}}
+                       for s, f, g in naming.ranked],
+        "equation": naming.equation,
+    }
+
+
+def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
+    """The report's tables: how every number was obtained."""
+    nm, run, ctx = naming, naming.run, naming.ctx
+    motion, y, winner = ctx.motion, ctx.y, naming.winner
+    how = {name: describe(name, d) for name, d in motion.how.items()}
+    how["standstill"] = describe_standstill(motion.standstill_speed, motion.rest_band)
+    return {"run": str(run.path), "sections": {
+        "Samples": {"samples": run.time.size, "fit samples": int(nm.fit_mask.sum()),
+                    "held-out samples (gap, fit.csv)": int(nm.held.sum()),
+                    "left out of fit and gap (standstill, ambiguous direction, record ends where "
+                    "the acceleration is extrapolated)": int((~nm.usable).sum()),
+                    "split": f"{locate.blocks(run.time.size)} equal blocks of the record, every "
+                             f"third held out; scores cross-validated over the {locate.FOLDS} "
+                             f"such folds"},
+        "Motion driving the model": {**how, "normal_force (laws only)":
+                                     describe("normal_force", ctx.load_how)},
+        "Gap and noise": {
+            "baseline gap (vectorised fit)": f"{nm.gap_base:.6g}",
+            "noise floor": "robust RMS of second differences of the baseline residual "
+                           "(1.4826 MAD / sqrt 6), over the held-out range of the channel",
+            "residual autocorrelation (lags 1-5)": f"{nm.white:.4g} "
+                                                   f"(noise alone: ~ {1 / np.sqrt(nm.held.sum()):.2g})",
+            "cross-validated baseline gap / noise floor (all usable samples)": f"{nm.cross_gap:.4g}",
+            "significant": str(nm.significant),
+            "residual peaks [Hz]": ", ".join(f"{f:.4g}" for f in nm.where["frequencies"]) or "-"},
+        "Share of the baseline residual explained by bins of": {
+            k: f"{v:.3f}" for k, v in sorted(nm.where["explained"].items(), key=lambda kv: -kv[1])},
+        "Models": {"baseline": f"{nm.baseline.parameters} (FrictionCoulomb, fitted with the "
+                               f"vectorised physics: the 'baseline' of fit.csv)",
+                   "augmented": f"{winner.parameters} ({winner.fmu}, rig mass "
+                                f"{winner.rig_mass:.6g} kg): co-simulated, the 'augmented' of "
+                                f"fit.csv" if winner else "= baseline",
+                   "scenario": f"{realised.scenario.name} (run it with guideway-fmu run)",
+                   "co-simulation": f"FeedKinematics (replay) -> {realised.model.fmu} -> "
+                                    f"HorizontalRig, gauss-seidel at the median sample interval; "
+                                    f"wall time {realised.wall_time:.2f} s; largest deviation from "
+                                    f"the vectorised model {realised.agreement:.3g} of the range",
+                   "not told apart from the named effect (the record passes its positions "
+                   "once: record strokes back and forth over the same stretch to separate them)":
+                       ", ".join(nm.not_told_apart) or "-",
+                   "equation (unknown only)": nm.equation or "-",
+                   "score of a law in foreign terms (normal force, peak frequencies)":
+                       f"{nm.foreign_score:.4g}",
+                   "equation held-out gap":
+                       f"{locate.gap(y, nm.baseline.prediction + nm.law, nm.held):.6g}"
+                       if nm.law is not None else "-"},
+        "Warnings": {str(i + 1): w for i, w in enumerate(run.warnings)} or {"-": "none"},
+        "Timing": {"diagnose wall time [s]": f"{seconds:.2f}"},
+    }}
+
+
+def write_report(out: Path, naming: Naming, realised: Realisation, seconds: float) -> dict:
+    """diagnosis.json, fit.csv, the plots and report.html into ``out``; returns the diagnosis."""
+    nm, run, ctx = naming, naming.run, naming.ctx
+    y, held = ctx.y, nm.held
+    diagnosis = diagnosis_record(nm, realised)
+    write_diagnosis(out / "diagnosis.json", diagnosis)
+    write_fit(out / "fit.csv", run.time[held], y[held], realised.baseline[held],
+              realised.augmented[held])
+    signal_name = (CANDIDATES[nm.effect].signal if nm.winner is not None
+                   else max(nm.where["explained"], key=nm.where["explained"].get))
+    signal = locate.signals(ctx)[signal_name]
+    images = [
+        plots.plot_comparison(out / "measured_vs_models.png", run.time, y, realised.baseline,
+                              realised.augmented, held, run.channel, nm.effect),
+        plots.plot_residual(out / f"residual_vs_{signal_name}.png", signal, signal_name,
+                            UNITS[signal_name], y - realised.baseline, y - realised.augmented,
+                            held, nm.effect),
+        plots.plot_ranking(out / "candidate_ranking.png", diagnosis["candidates"],
+                           diagnosis["gap_before"], nm.noise),
+    ]
+    write_html(out / "report.html", diagnosis, _notes(nm, realised, seconds), images)
+    return diagnosis

@@ -28,7 +28,7 @@ load channel that enters a law as a regressor is smoothed by :func:`smooth_chann
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from math import comb
 
 import numpy as np
@@ -81,27 +81,26 @@ def channel_noise(y) -> float:
     return max(noise_rms(y), rounding_noise(y))
 
 
-def smooth_channel(time, y) -> tuple[np.ndarray, str]:
+def smooth_channel(time, y) -> tuple[np.ndarray, "Derivation"]:
     """(values, how) of a measured channel that enters a law as a regressor (a load): its noise
     would bias the law's coefficient toward 0 and add to the residual, so a channel noisier than
     NOISY of its range is smoothed by the cubic Savitzky-Golay filter of the longest window,
     doubling from 5 to SMOOTHEST samples, whose residual RMS stays within the channel's noise
-    (discrepancy principle: a longer window would take signal with the noise)."""
+    (discrepancy principle: a longer window would take signal with the noise). ``how.noise`` is
+    set where the channel is noisy; ``how.window`` is 0 where even 5 samples take signal."""
     y = np.asarray(y, dtype=float)
     noise = channel_noise(y)
     if noise <= NOISY * max(float(np.ptp(y)), 1e-300):
-        return y, "measured"
+        return y, Derivation()
     grid = _Grid(time, 5)
-    kept, how = y, "measured (noisy, but even the 5-sample cubic filter takes signal)"
+    kept, how = y, Derivation(noise=noise)
     for window in 2 ** np.arange(2, int(np.log2(SMOOTHEST - 1)) + 1) + 1:
         if window > grid.longest:
             break
         smooth = grid.filter(y, window=int(window))
         if np.sqrt(np.mean((y - smooth) ** 2)) > noise:
             break
-        kept, how = smooth, (f"measured, smoothed: Savitzky-Golay, cubic, {window} samples, zero "
-                             f"phase, the longest window whose residual stays within the "
-                             f"channel's noise ({noise:.4g} RMS)")
+        kept, how = smooth, grid.derivation(window=int(window), noise=noise)
     return kept, how
 
 
@@ -129,11 +128,39 @@ def _at_rest(x, standstill, band):
     return rest
 
 
+@dataclass(frozen=True)
+class Derivation:
+    """How one signal of the motion was obtained from the record (report.py words it).
+
+    ``source``: the channel it comes from ("" where it is that channel itself); ``derivative``:
+    the order of the derivative taken (-1: integrated by the trapezoid rule); ``window`` [samples]
+    and ``order``: the zero-phase Savitzky-Golay filter applied (window 0: none), at the grid step
+    ``step`` [s], on a uniform grid built by cubic splines unless ``uniform``; ``noise_limit``
+    [m/s^2]: the acceleration noise that chose the window; ``gain`` [-]: a least-squares scale
+    applied; ``recorded_unused``: a recorded channel of the same name is set aside; ``dequantised``:
+    encoder count steps filtered out; ``noise``: the channel's noise RMS where it was smoothed
+    for being noisy."""
+
+    source: str = ""
+    derivative: int = 0
+    window: int = 0
+    order: int = 3
+    step: float = 0.0
+    uniform: bool = True
+    noise_limit: float | None = None
+    gain: float | None = None
+    recorded_unused: bool = False
+    dequantised: bool = False
+    noise: float | None = None
+
+
 @dataclass
 class Motion:
     """Feed motion at the samples: x [m], v [m/s], a [m/s^2]; ``standstill`` marks samples whose
-    direction is ambiguous, ``ends`` those within half a filter window of the record's ends,
-    where the acceleration is extrapolated; ``how`` says how each signal was obtained."""
+    direction is ambiguous (|v| <= ``standstill_speed`` [m/s], widened by the neighbours whose
+    position stays within ``rest_band`` [m] of the rest where the position is recorded, else
+    None), ``ends`` those within half a filter window of the record's ends, where the
+    acceleration is extrapolated; ``how`` says how each signal was obtained."""
 
     time: np.ndarray
     x: np.ndarray
@@ -141,8 +168,10 @@ class Motion:
     a: np.ndarray
     standstill: np.ndarray
     reversals: np.ndarray  # sample indices where the direction of motion changes
-    how: dict
+    how: dict[str, Derivation]
     ends: np.ndarray
+    standstill_speed: float
+    rest_band: float | None
 
     def since_reversal(self) -> tuple[np.ndarray, np.ndarray]:
         """Time [s] and displacement [m] since the last reversal (since the start before the first)."""
@@ -172,6 +201,11 @@ class _Grid:
         out = savgol_filter(self.on_grid(y), window, order, deriv=deriv, delta=self.step,
                             mode="interp")
         return out if self.uniform else CubicSpline(self.grid, out)(self.time)
+
+    def derivation(self, source="", derivative=0, window=None, order=3, **details) -> Derivation:
+        """The :class:`Derivation` of :meth:`filter` with these arguments."""
+        window = self.window if window is None else min(window, self.longest)
+        return Derivation(source, derivative, window, order, self.step, self.uniform, **details)
 
 
 def _window(time, velocity_like) -> int:
@@ -251,43 +285,34 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         rough = np.gradient(columns["feed_position"], time)
     coarse = _Grid(time, max(5, 2 * (time.size // 400) + 1)).filter(rough)
     grid = _Grid(time, _window(time, coarse))
-    filt = (f"Savitzky-Golay, cubic, {grid.window} samples ({grid.window * grid.step:.4g} s), "
-            f"zero phase (no delay)" + ("" if grid.uniform else ", on a uniform grid at the "
-                                        "median step, cubic splines there and back"))
 
     def measured(name):
         y = columns[name]
         if channel_noise(y) > NOISY * max(np.ptp(y), 1e-300):
-            how[name] = f"measured, smoothed ({filt})"
+            how[name] = grid.derivation()
             return grid.filter(y)
-        how[name] = "measured"
+        how[name] = Derivation()
         return np.asarray(y, dtype=float)
 
     if "feed_velocity" in columns:
         v = measured("feed_velocity")
     else:
         v = grid.filter(columns["feed_position"], deriv=1)
-        how["feed_velocity"] = f"derived from feed_position: first derivative, {filt}"
+        how["feed_velocity"] = grid.derivation("feed_position", 1)
     if "feed_position" in columns:
         x = measured("feed_position")
     else:
         x = cumulative_trapezoid(v, time, initial=0.0)
-        how["feed_position"] = "integrated from feed_velocity (trapezoid rule, x = 0 at the start)"
+        how["feed_position"] = Derivation("feed_velocity", -1)
     limit = STANDSTILL * np.max(np.abs(v))
     rounding = rounding_noise(columns["feed_position"]) if "feed_position" in columns else 0.0
+    band = None
     if "feed_position" in columns:  # rests are told by the position: the velocity's noise decides
         limit = min(limit, AMBIGUOUS * max(channel_noise(rough), SIGN_WIDTH * np.max(np.abs(v))))
         band = _resolution(columns["feed_position"], rounding)
         standstill = _at_rest(x, np.abs(v) <= limit, band)
-        how["standstill"] = (
-            f"|feed_velocity| <= {limit:.4g} m/s ({AMBIGUOUS:g} times its noise or the "
-            f"regularised sign's width, at most "
-            f"{STANDSTILL:.0%} of its maximum), and the samples next to such a rest whose position "
-            f"lies within {band:.4g} m of it (the position has not moved; a differenced velocity "
-            f"spreads starts and stops over its window)")
     else:
         standstill = np.abs(v) <= limit
-        how["standstill"] = f"|feed_velocity| <= {limit:.4g} m/s ({STANDSTILL:.0%} of its maximum)"
     moving = np.flatnonzero(~standstill)
     signs = np.sign(v[moving])
     reversals = moving[1:][signs[1:] != signs[:-1]]
@@ -297,30 +322,21 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
                                                       acceleration_noise, per_stroke)
         if rounding > 0.0:  # encoder counts: de-quantised
             x = grid.filter(columns["feed_position"], window=window, order=ORDER)
-            how["feed_position"] = (f"measured, smoothed by the acceleration's filter (order "
-                                    f"{ORDER}, {window} samples, zero phase): the encoder's "
-                                    f"count steps are taken out (pre-sliding builds up over a "
-                                    f"few counts)")
-        how["feed_acceleration"] = (
-            f"derived from feed_position: second derivative, Savitzky-Golay of order {ORDER}, "
-            f"{window} samples ({window * grid.step:.4g} s), zero phase, the shortest window "
-            f"whose noise from the position stays within {acceleration_noise:.4g} m/s2 RMS (at "
-            f"most a quarter of a stroke)" + ("" if "feed_acceleration" not in columns else
-                                     "; the recorded feed_acceleration is not used (differenced "
-                                     "and smoothed by the rig)"))
+            how["feed_position"] = grid.derivation(window=window, order=ORDER, dequantised=True)
+        how["feed_acceleration"] = grid.derivation(
+            "feed_position", 2, window, ORDER, noise_limit=acceleration_noise,
+            recorded_unused="feed_acceleration" in columns)
     else:
         ends = np.zeros(time.size, dtype=bool)
         if "feed_acceleration" in columns:
             a = measured("feed_acceleration")
         elif "feed_velocity" in columns:
             a = grid.filter(v, deriv=1)
-            how["feed_acceleration"] = f"derived from feed_velocity: first derivative, {filt}"
+            how["feed_acceleration"] = grid.derivation("feed_velocity", 1)
         else:
             a = grid.filter(columns["feed_position"], deriv=2)
-            how["feed_acceleration"] = f"derived from feed_position: second derivative, {filt}"
+            how["feed_acceleration"] = grid.derivation("feed_position", 2)
         gain = _acceleration_gain(grid, columns, a)
         a = gain * a
-        how["feed_acceleration"] += (f"; scaled by {gain:.4g}, the least-squares gain of the "
-                                     f"{SHORT}-sample second derivative of feed_position (first "
-                                     f"of feed_velocity without it) on it")
-    return Motion(time, x, v, a, standstill, reversals, how, ends)
+        how["feed_acceleration"] = replace(how["feed_acceleration"], gain=gain)
+    return Motion(time, x, v, a, standstill, reversals, how, ends, float(limit), band)

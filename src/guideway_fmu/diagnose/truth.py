@@ -87,25 +87,14 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 from scipy.optimize import brentq
 
+from .candidates import CANDIDATES
+
 __all__ = [
     "EFFECTS", "EXPECTED", "VISIBLE_FRACTION", "TruthInfo", "SyntheticRun",
     "simulate", "write_run", "make_run", "make_suite", "write_example",
 ]
 
 FORMAT = "guideway-measured-run/1"
-#: effects the generator can hide, and the answer the workflow should give for each
-EXPECTED = {
-    "none": "none",
-    "lubrication": "lubrication",
-    "presliding_hysteresis": "presliding_hysteresis",
-    "position_dependent_friction": "position_dependent_friction",
-    "unmodeled_mass": "unmodeled_mass",
-    "preload_loss": "preload_loss",
-    "ball_to_ball_contact": "ball_to_ball_contact",
-    "normal_load_friction": "unknown",
-    "mains_disturbance": "unknown",
-}
-EFFECTS = tuple(EXPECTED)
 #: RMS of the visible part of a size-1 effect, as a fraction of the baseline force range [-]
 VISIBLE_FRACTION = 0.03
 VELOCITY_TOLERANCE = 1e-4  # v_tol of s(v) = tanh(v / v_tol) [m/s]
@@ -440,6 +429,10 @@ _BUILDERS = {
     "preload_loss": _preload, "ball_to_ball_contact": _ball_to_ball,
     "normal_load_friction": _normal_load, "mains_disturbance": _mains,
 }
+#: effects the generator can hide, and the answer the workflow should give for each: the effect
+#: itself where it is a registered candidate, else (outside the vocabulary) "unknown"
+EXPECTED = {e: e if e in CANDIDATES or e == "none" else "unknown" for e in _BUILDERS}
+EFFECTS = tuple(EXPECTED)
 
 
 def _visible_rms(h, sign, moving):

@@ -1,0 +1,233 @@
+"""The decision of the discrepancy workflow (steps 1-4): which effect a measured run misses.
+
+1. load and check the measured run (run_io), derive the motion that drives the model (signals);
+2. calibrate the baseline (the Coulomb level and the channel's offset) on the fit samples;
+3. locate the gap: residual against motion, reversals, running distance and frequency, the noise
+   floor from the residual's high-frequency part, whether the gap is significant;
+4. fit every candidate extension on the fit samples and score it on the held-out samples
+   (BIC of the held-out residuals: baseline minus candidate), cross-validated: the three folds of
+   locate.folds each hold out a third of the blocks, so every usable sample is predicted once by
+   models fitted without it (the reported gaps are those of fold 1). Name the best candidate when
+   the gap exceeds the noise floor by SIGNIFICANT_ERRORS standard errors of an RMS of white noise
+   (1 + 3 / sqrt(2 n): 2.7 % for n = 6000), its score exceeds SCORE_MIN and that of a law in
+   foreign terms, and it explains at least EXPLAINED of the gap's excess variance over the
+   noise; else ``unknown`` with a sparse-regression law for the residual when such a law (or
+   the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap
+   exceeds UNRESOLVED noise floors; else ``none``: a small gap that neither physics nor a law
+   accounts for is taken as what the data cannot resolve (errors of the measured inputs, such
+   as accelerations differenced from encoder counts), which the synthetic null runs show.
+   A record that passes its positions once cannot show friction repeating at the same positions,
+   the mark of position dependence: there a running-distance candidate within SCORE_MIN of the
+   position table is named instead, the pair's evidence shared (:func:`_same_path_choice`);
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import locate, regression
+from .candidates import BASELINE, RUNNING_DISTANCE_EFFECTS, Context, Fit, candidates_for
+from .run_io import MeasuredRun, load_run
+from .signals import derive_motion, noise_rms
+
+SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
+SCORE_MIN = 10.0  # held-out BIC improvement a candidate needs to be named
+EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate must explain
+ONE_WAY = 0.02  # least share of the moving samples each direction of motion must have
+LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
+#: a significant gap no candidate or law explains is ``unknown`` above this many noise floors,
+#: else ``none``: below it, it is what errors of the measured inputs alone produce (the true model
+#: fed the recorded motion of synthetic null runs misses by up to about 1.4 noise floors)
+UNRESOLVED = 2.0
+#: the acceleration derived from the position may carry this share of the force channel's noise
+#: (over the moving mass): its error enters the model as m a, and 0.3 adds 4 % to the noise in
+#: quadrature while the shortest such window keeps the filter's bias on short ramps small
+INPUT_SHARE = 0.3
+#: |corr(running distance, position)| over the usable samples above which the record passes its
+#: positions once (one long stroke with jogs: 0.9998 and more in the synthetic runs where it
+#: happened; records with a return stroke that were looked at: 0.85-0.92)
+SAME_PATH = 0.99
+MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
+
+
+def _bic(residual, mask, k) -> float:
+    n = int(mask.sum())
+    return n * np.log(max(float(np.mean(residual[mask] ** 2)), 1e-300)) + k * np.log(n)
+
+
+def _confidence(scores: dict, chosen: str) -> float:
+    """Posterior weight of ``chosen`` among the baseline ("none", score 0) and the candidates,
+    exp((score - SCORE_MIN) / 2) normalised (BIC approximation of the model evidence, with the
+    naming margin SCORE_MIN as the prior odds against an extension)."""
+    values = np.array([v - (SCORE_MIN if k != "none" else 0.0) for k, v in scores.items()])
+    weights = np.exp((values - values.max()) / 2.0)
+    weights /= weights.sum()
+    if chosen == "unknown":  # no named model holds: the weight of the best one is what is doubted
+        return float(1.0 - weights.max()) if len(weights) > 1 else 0.0
+    return float(dict(zip(scores, weights))[chosen])
+
+
+def _same_path_choice(ctx: Context, usable: np.ndarray, ranked: list) -> tuple[int, list[str]]:
+    """(index into ``ranked`` of the candidate to name, effects the record cannot tell apart from it).
+
+    The best-scoring candidate, except on a record that passes its positions once
+    (|corr(S, x)| > SAME_PATH), where the position table and a running-distance candidate that
+    lead the ranking within SCORE_MIN of each other are not told apart: S and x are one function
+    of the other, so both tables fit the same curve and their score difference is noise, while
+    the spec's mark of position dependence, friction repeating at the same positions in every
+    stroke, is absent from the record. The running-distance candidate is named.
+    """
+    effects = [fitted.effect for _, fitted, _ in ranked]
+    if "position_dependent_friction" not in effects:
+        return 0, []
+    if abs(np.corrcoef(ctx.distance[usable], ctx.motion.x[usable])[0, 1]) <= SAME_PATH:
+        return 0, []
+    position = ranked[effects.index("position_dependent_friction")][0]
+    for i, (score, fitted, _) in enumerate(ranked):
+        if (fitted.effect in RUNNING_DISTANCE_EFFECTS and abs(position - score) < SCORE_MIN
+                and ranked[0][0] in (position, score)):
+            return i, ["position_dependent_friction"]
+    return 0, []
+
+
+@dataclass
+class Naming:
+    """Steps 1-4 of the workflow on one run: the data, the models and the decision."""
+
+    run: MeasuredRun
+    ctx: Context
+    fit_mask: np.ndarray
+    held: np.ndarray
+    usable: np.ndarray
+    baseline: Fit
+    noise: float
+    gap_base: float
+    cross_gap: float  # cross-validated baseline gap over the noise floor, all usable samples
+    white: float
+    significant: bool
+    where: dict
+    ranked: list  # (cross-validated score, Fit on the fold-1 fit samples, held-out gap), best first
+    foreign_score: float
+    effect: str
+    winner: Fit | None
+    equation: str | None
+    law: np.ndarray | None
+    confidence: float
+    not_told_apart: list  # effects scoring like the named one that the record cannot tell from it
+
+
+def motion_of(run: MeasuredRun):
+    """The feed motion of ``run`` (signals.derive_motion), the acceleration allowed INPUT_SHARE
+    of the force channel's noise over the moving mass where the model has a mass term."""
+    columns = {c: run.columns[c] for c in MOTION_CHANNELS
+               if c in run.inputs or (c == "feed_acceleration" and c in run.columns)}
+    mass_term = run.channel == "drive_force" and run.moving_mass > 0.0
+    tolerance = (INPUT_SHARE * noise_rms(run.columns[run.channel]) / run.moving_mass
+                 if mass_term else None)
+    return derive_motion(run.time, columns, tolerance)
+
+
+def decide(run_dir) -> Naming:
+    """Load, calibrate, locate and name (steps 1-4) without co-simulating. Raises
+    FileNotFoundError or ValueError (one message naming the file and the row, column, section
+    or key) for a run that cannot be used."""
+    run = load_run(run_dir)
+    source = run.path / "rig.toml"
+    if run.kind != "horizontal_drive":
+        raise ValueError(f"{source}: [rig] key 'kind': diagnose handles 'horizontal_drive' rigs; "
+                         f"{run.kind!r} is not supported yet")
+    if run.model["friction"] != "coulomb":
+        raise ValueError(f"{source}: [model] key 'friction': diagnose calibrates a 'coulomb' "
+                         f"baseline; {run.model['friction']!r} is not supported as a baseline yet")
+    motion = motion_of(run)
+    ctx = Context.of(run, motion)
+    usable = ~motion.standstill & ~motion.ends
+    forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
+    if min(forward, backward) < ONE_WAY * usable.sum():
+        raise ValueError(f"{run.path / 'data.csv'}: the feed moves one way only ({forward} samples "
+                         f"forward, {backward} backward): the Coulomb level and the force offset "
+                         f"cannot be told apart; record strokes in both directions (each at least "
+                         f"{ONE_WAY:.0%} of the moving samples)")
+    splits = locate.folds(run.time.size, usable)
+    fit_mask, held = splits[0]
+    if held.sum() < 20 or fit_mask.sum() < 20:
+        raise ValueError(f"{run.path / 'data.csv'}: only {int(usable.sum())} samples with a clear "
+                         f"direction of motion; at least 60 are needed")
+
+    y = ctx.y
+
+    def calibrated(mask):
+        fitted = BASELINE.fit(ctx, mask)
+        if fitted is None:
+            raise ValueError(f"{run.path / 'data.csv'}: column '{run.channel}': the Coulomb level "
+                             f"fits negative; {run.channel} must be positive along the motion")
+        return fitted
+
+    def out_of_fold(predictions):  # each usable sample from the model fitted without it
+        pooled = np.zeros_like(y)
+        for (_, h), prediction in zip(splits, predictions):
+            pooled[h] = prediction[h]
+        return pooled
+
+    bases = [calibrated(f) for f, _ in splits]
+    baseline = bases[0]
+    residual = y - baseline.prediction
+    noise = locate.noise_floor(y, residual, held)
+    gap_base = locate.gap(y, baseline.prediction, held)
+    white = locate.whiteness(residual, held)
+    where = locate.locate(ctx, residual, usable)
+
+    # the decision: cross-validated over the folds (every usable sample held out once)
+    base_cv = out_of_fold([b.prediction for b in bases])
+    noise_cv = locate.noise_floor(y, residual, usable)
+    gap_cv = locate.gap(y, base_cv, usable)
+    # the RMS of n white-noise samples has a relative standard error of 1 / sqrt(2 n)
+    significant = bool(gap_cv > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * usable.sum())) * noise_cv)
+    bic_base = _bic(y - base_cv, usable, baseline.n_parameters)
+    ranked, cv_gaps = [], {}
+    for candidate in candidates_for(run):
+        fitted = [candidate.fit(ctx, f) for f, _ in splits]
+        if any(f is None for f in fitted):
+            continue
+        prediction = out_of_fold([f.prediction for f in fitted])
+        score = bic_base - _bic(y - prediction, usable, fitted[0].n_parameters)
+        ranked.append((score, fitted[0], locate.gap(y, fitted[0].prediction, held)))
+        cv_gaps[candidate.effect] = locate.gap(y, prediction, usable)
+    ranked.sort(key=lambda item: -item[0])
+
+    def share(gap_model):  # of the gap's excess variance over the noise, cross-validated
+        return (gap_cv**2 - gap_model**2) / max(gap_cv**2 - noise_cv**2, 1e-300)
+
+    def law(foreign):  # (fold-1 law, its cross-validated score and share of the gap)
+        laws = [regression.propose(ctx, y - b.prediction, f, where["frequencies"], foreign=foreign)
+                for b, (f, _) in zip(bases, splits)]
+        prediction = out_of_fold([b.prediction + values for b, (_, values, _) in zip(bases, laws)])
+        terms = max(n for _, _, n in laws)
+        score = bic_base - _bic(y - prediction, usable, baseline.n_parameters + terms)
+        return laws[0], score, share(locate.gap(y, prediction, usable))
+
+    # a law from signals no candidate uses (normal force, residual peak frequencies) competes
+    _, foreign_score, foreign_share = law(foreign=True)
+    effect, winner, equation, values = "none", None, None, None
+    chosen, twins = _same_path_choice(ctx, usable, ranked)
+    if significant:
+        score, best, _ = ranked[chosen] if ranked else (-np.inf, None, gap_base)
+        if (score > SCORE_MIN and share(cv_gaps[best.effect]) >= EXPLAINED
+                and score > foreign_score):
+            effect, winner = best.effect, best
+        else:
+            (equation, values, _), law_score, law_share = law(foreign=False)
+            explains = law_score > SCORE_MIN and law_share >= LAW_EXPLAINED
+            foreign_explains = foreign_score > SCORE_MIN and foreign_share >= LAW_EXPLAINED
+            if explains or foreign_explains or gap_cv > UNRESOLVED * noise_cv:
+                effect = "unknown"
+            else:  # small structure no model or law accounts for: the inputs' own errors
+                equation, values = None, None
+    scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
+    twins = twins if winner is not None else []
+    for twin in twins:  # the record holds no evidence between them: they share the pair's best
+        scores[twin] = scores[effect] = max(scores[twin], scores[effect])
+    return Naming(run, ctx, fit_mask, held, usable, baseline, noise, gap_base, gap_cv / noise_cv,
+                  white, significant, where, ranked, foreign_score, effect, winner, equation,
+                  values, _confidence(scores, effect), twins)
