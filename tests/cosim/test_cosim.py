@@ -384,13 +384,20 @@ def test_observer_sees_every_accepted_step_and_the_end(tmp_path, fmu_dir):
 
 def test_a_new_algorithm_is_one_subclass_read_by_the_check_and_the_master(tmp_path, fmu_dir,
                                                                          monkeypatch):
+    monkeypatch.setitem(algorithms.ALGORITHMS, "reversed", None)  # removed again after the test
+
     class Reversed(algorithms.GaussSeidel):  # the Gauss-Seidel order backwards: the contact first
+        name = "reversed"
+
         def __init__(self, bus, system):
             super().__init__(bus, system)
             self.names = self.names[::-1]
 
-    monkeypatch.setitem(algorithms.ALGORITHMS, "reversed", Reversed)
-    Reversed.name = "reversed"
+    class Unnamed(algorithms.GaussSeidel):  # keeps its parent's name: registers nothing
+        pass
+
+    assert algorithms.ALGORITHMS["reversed"] is Reversed
+    assert algorithms.ALGORITHMS["gauss-seidel"] is algorithms.GaussSeidel
     s = rig(tmp_path, fmu_dir, stop=1e-4, step=1e-6, algorithm="reversed")
     result = master.simulate(s)
     assert result.algorithm == "reversed" and result.steps == 100

@@ -8,7 +8,6 @@ the outputs at t = 0, which differ from 0 only in the contact loads, and the fri
 keeps the default feed profile (biharmonic, with phases 0).
 """
 import dataclasses
-import json
 import shutil
 import xml.etree.ElementTree as ET
 import zipfile
@@ -35,12 +34,12 @@ RTOL = 1e-11  # round-off: libcosim counts integer ns, its FMUs see t off by ~1e
 
 def make(folder, fmu_dir, parameters):
     """Write the scenario (``parameters``: instance -> {name: value}), load it and export it."""
-    text = '[experiment]\nstart = 0.0\nstop = 2e-4\nstep = 1e-6\nalgorithm = "jacobi"\n'
+    b = system.Builder("ssp_test").experiment(start=0.0, stop=2e-4, step=1e-6, algorithm="jacobi")
     for inst, fmu in FMUS.items():
-        values = ", ".join(f"{k} = {json.dumps(v)}" for k, v in parameters.get(inst, {}).items())
-        text += f'[components.{inst}]\nfmu = "{fmu}.fmu"\nparameters = {{ {values} }}\n'
-    text += "".join(f'[[connections]]\nfrom = "{a}"\nto = "{b}"\n' for a, b in WIRES)
-    (folder / "ssp_test.toml").write_text(text)
+        b.component(inst, f"{fmu}.fmu", **parameters.get(inst, {}))
+    for source, target in WIRES:
+        b.connect(source, target)
+    system.dump(b.system(check_fmus=False), folder / "ssp_test.toml")
     sys_ = system.load(folder / "ssp_test.toml", fmu_dir=fmu_dir)
     return sys_, ssp.export_ssp(sys_, folder / "ssp_test.ssp")
 

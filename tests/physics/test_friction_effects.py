@@ -74,3 +74,54 @@ def test_horizontal_rig_drive_force_hand_calculation():
     # drive = m a - F_friction + offset: 2 kg at 3 m/s2 against friction -5 N (opposing +u)
     assert horizontal_rig.drive_force(3.0, -5.0, 2.0, 0.5) == pytest.approx(6.0 + 5.0 + 0.5)
     assert horizontal_rig.friction_force(-5.0, 0.5) == pytest.approx(5.5)
+
+
+# -- the continuous-time models of the friction FMUs -------------------------------------------
+COULOMB = {"coefficient": 0.01, "rollers_per_groove": 10, "velocity_tolerance": 1e-4}
+LOADS = {"F_upper": 100.0, "F_lower": 50.0}  # level 0.01 * 2 * 10 * 150 = 30 N
+
+
+def test_dahl_model_derivative_is_the_limit_of_its_exact_path_update_numerical_derivative():
+    model = fl.DahlModel(1e-5, 1e-4, 1e-3, 0.3, 0.2, 0.0, **COULOMB)
+    z = np.array([0.2, -0.5, 0.9])
+    for u in (0.02, -0.03):
+        dt = 1e-9
+        finite = (model.update(z, u * dt) - z) / dt
+        np.testing.assert_allclose(model.derivatives(0.0, z, {**LOADS, "u": u}), finite,
+                                   rtol=1e-4)
+
+
+def test_dahl_model_force_at_saturation_is_the_coulomb_level_hand_calculation():
+    model = fl.DahlModel(1e-5, 1e-4, 1e-3, 0.3, 0.2, 0.0, **COULOMB)
+    out = model.outputs(0.0, np.ones(3), {**LOADS, "u": 0.1})
+    assert out["F_friction"] == pytest.approx(-30.0, rel=1e-12)
+    assert model.initial_state(0.0, {}) == (0.0, 0.0, 0.0)
+
+
+def test_running_distance_models_integrate_the_speed_hand_calculation():
+    loss = fl.PreloadLossModel(0.4, 2.0, **COULOMB)
+    assert loss.derivatives(0.0, (1.0,), {**LOADS, "u": -0.3}) == (0.3,)
+    at = loss.outputs(0.0, (2.0,), {**LOADS, "u": 1.0})["F_friction"]
+    assert at == pytest.approx(-30.0 * (1.0 - 0.4 * (1.0 - np.exp(-1.0))), rel=1e-9)
+    table = fl.BallToBallModel(table_start=0.0, table_end=1.0, factors="1 3",
+                                             **COULOMB)
+    assert table.state_scales() == (1.0,)
+    assert table.outputs(0.0, (0.5,), {**LOADS, "u": 1.0})["F_friction"] == pytest.approx(-60.0)
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: fl.DahlModel(0.0, 1e-4, 1e-3, 0.0, 0.0, 0.0, **COULOMB),
+     "presliding_distance"),
+    (lambda: fl.DahlModel(1e-5, 1e-4, 1e-3, 0.6, 0.5, 0.0, **COULOMB), "third_share"),
+    (lambda: fl.StribeckModel(0.01, -1.0, 2.0, 0.0, 1.0, **COULOMB),
+     "stribeck_velocity"),
+    (lambda: fl.PreloadLossModel(0.2, 0.0, **COULOMB), "wear_distance"),
+    (lambda: fl.PositionTableModel(0.0, 1.0, "1 x", **COULOMB), "factors"),
+    (lambda: fl.PositionTableModel(1.0, 1.0, "1 2", **COULOMB), "table_end"),
+    (lambda: fl.StribeckModel(0.01, 0.01, 2.0, 0.0, 1.0,
+                                            **{**COULOMB, "rollers_per_groove": 0}),
+     "rollers_per_groove"),
+])
+def test_effect_models_refuse_bad_parameters_naming_them(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()

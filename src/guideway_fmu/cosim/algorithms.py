@@ -78,7 +78,7 @@ class Algorithm(ABC):
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
-        if cls.name:
+        if "name" in cls.__dict__:  # a subclass that keeps its parent's name replaces nothing
             ALGORITHMS[cls.name] = cls
 
     def __init__(self, bus, system: "System"):

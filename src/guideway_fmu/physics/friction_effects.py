@@ -23,11 +23,19 @@ workflow fits them) and for one value at a time (the FMUs evaluate them per comm
   raises the friction level and makes it vary irregularly as the train's arrangement changes
   with the distance run; the level is F_c times a factor interpolated in a table over the
   running distance D, with nodes about a ball diameter apart.
+
+The friction FMUs of the discrepancy workflow carry these laws on FrictionCoulomb's interface:
+the model classes below take one FMU's parameters keyword for keyword; their Coulomb level is F_c = coefficient 2 N (F_upper + F_lower) [N] from the per-roller loads. Path states
+evolve along the feed velocity u: the Dahl states by dz/dt = (u - |u| z) / delta, the running
+distance by dD/dt = |u|. The FMUs advance them along the position input instead, exactly
+(:meth:`DahlModel.update`, D + |dx|), which solves the same equations over a monotone step.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from . import checks
+from .dynamics import ContinuousModel
 from .roller_friction import regularised_sign
 
 
@@ -122,3 +130,161 @@ def ball_to_ball_friction(u, distance, coulomb, start, end, factors, velocity_to
     running distance D [m] (ball-to-ball sliding; table nodes about a ball diameter apart)."""
     level = coulomb * table_factor(distance, start, end, factors)
     return -level * regularised_sign(u, velocity_tolerance)
+
+
+def parse_factors(text) -> np.ndarray:
+    """The factors of a table parameter: numbers separated by spaces (at least 2, finite)."""
+    try:
+        factors = np.array([float(v) for v in str(text).split()])
+    except ValueError:
+        raise ValueError(f"parameter factors must be numbers separated by spaces, "
+                         f"got {text!r}") from None
+    if factors.size < 2 or not np.all(np.isfinite(factors)):
+        raise ValueError(f"parameter factors needs at least 2 finite numbers, got {text!r}")
+    return factors
+
+
+class EffectModel(ContinuousModel):
+    """A friction effect on FrictionCoulomb's interface: inputs F_upper, F_lower [N] (per
+    roller), u [m/s]; output F_friction [N]. Subclasses give :meth:`force`."""
+
+    inputs = ("F_upper", "F_lower", "u")
+
+    def __init__(self, coefficient, rollers_per_groove, velocity_tolerance):
+        self.coefficient = checks.non_negative("coefficient", coefficient)
+        self.rollers = checks.positive_integer("rollers_per_groove", rollers_per_groove)
+        self.velocity_tolerance = checks.non_negative("velocity_tolerance", velocity_tolerance)
+
+    def total_load(self, inputs) -> float:
+        """2 N (F_upper + F_lower) [N]: the load the coefficients multiply."""
+        return 2.0 * self.rollers * (inputs["F_upper"] + inputs["F_lower"])
+
+    def force(self, state, inputs) -> float:
+        raise NotImplementedError
+
+    def outputs(self, t, state, inputs, wanted=None):
+        return {"F_friction": float(self.force(state, inputs))}
+
+
+class StribeckModel(EffectModel):
+    """:func:`stribeck_friction`, static level static_coefficient 2 N (F_upper + F_lower)."""
+
+    def __init__(self, static_coefficient, stribeck_velocity, stribeck_exponent, viscous,
+                 viscous_exponent, **coulomb):
+        for name, value in (("stribeck_velocity", stribeck_velocity),
+                            ("stribeck_exponent", stribeck_exponent),
+                            ("viscous_exponent", viscous_exponent)):
+            checks.positive(name, value)
+        self.static_coefficient = checks.non_negative("static_coefficient", static_coefficient)
+        self.shape = (stribeck_velocity, checks.finite("viscous", viscous), stribeck_exponent,
+                      viscous_exponent)
+        super().__init__(**coulomb)
+
+    def force(self, state, inputs):
+        load = self.total_load(inputs)
+        v_s, c_v, d, b = self.shape
+        return stribeck_friction(inputs["u"], self.coefficient * load,
+                                 self.static_coefficient * load, v_s, c_v,
+                                 self.velocity_tolerance, d, b)
+
+
+class DahlModel(EffectModel):
+    """Three Dahl elements in parallel (:func:`dahl_friction`), shares of the Coulomb level
+    1 - s_2 - s_3, s_2, s_3; states z_1..z_3 [-], dz/dt = (u - |u| z) / delta."""
+
+    states = ("z_1", "z_2", "z_3")
+
+    def __init__(self, presliding_distance, second_distance, third_distance, second_share,
+                 third_share, z_start, **coulomb):
+        self.distances = np.array([checks.positive("presliding_distance", presliding_distance),
+                                   checks.positive("second_distance", second_distance),
+                                   checks.positive("third_distance", third_distance)])
+        checks.in_range("second_share", second_share, 0.0, 1.0)
+        checks.in_range("third_share", third_share, 0.0, 1.0 - second_share)
+        self.shares = np.array([1.0 - second_share - third_share, second_share, third_share])
+        self.z_start = checks.in_range("z_start", z_start, -1.0, 1.0)
+        super().__init__(**coulomb)
+
+    def state_scales(self):
+        return (1.0, 1.0, 1.0)
+
+    def initial_state(self, t, inputs):
+        return (float(self.z_start),) * 3
+
+    def derivatives(self, t, state, inputs):
+        u = inputs["u"]
+        return tuple((u - abs(u) * np.asarray(state)) / self.distances)
+
+    def update(self, z, dx) -> np.ndarray:
+        """The states after a monotone displacement dx [m] (:func:`dahl_update`)."""
+        return dahl_update(z, dx, self.distances)
+
+    def force(self, state, inputs):
+        level = self.coefficient * self.total_load(inputs)
+        return np.sum(dahl_friction(state, level * self.shares))
+
+
+class _TableModel(EffectModel):
+    """A level factor interpolated in a table over equally spaced nodes from start to end."""
+
+    def __init__(self, table_start, table_end, factors, **coulomb):
+        self.factors = parse_factors(factors)
+        self.start = checks.finite("table_start", table_start)
+        if not table_end > table_start:
+            raise ValueError(f"parameter table_end must be > table_start, got {table_end}")
+        self.end = table_end
+        super().__init__(**coulomb)
+
+
+class PositionTableModel(_TableModel):
+    """:func:`position_dependent_friction` over the feed position input x [m]."""
+
+    inputs = EffectModel.inputs + ("x",)
+
+    def force(self, state, inputs):
+        return position_dependent_friction(inputs["u"], inputs["x"],
+                                           self.coefficient * self.total_load(inputs), self.start,
+                                           self.end, self.factors, self.velocity_tolerance)
+
+
+class _RunningDistanceModel(EffectModel):
+    """The running distance D [m] as the state, dD/dt = |u|, D = 0 at the start."""
+
+    states = ("distance",)
+    distance_scale = 1.0  # m, set by subclasses
+
+    def state_scales(self):
+        return (self.distance_scale,)
+
+    def initial_state(self, t, inputs):
+        return (0.0,)
+
+    def derivatives(self, t, state, inputs):
+        return (abs(inputs["u"]),)
+
+
+class PreloadLossModel(_RunningDistanceModel):
+    """:func:`preload_loss_friction` over the running distance."""
+
+    def __init__(self, loss, wear_distance, **coulomb):
+        self.loss = checks.in_range("loss", loss, -10.0, 1.0)
+        self.distance_scale = checks.positive("wear_distance", wear_distance)
+        super().__init__(**coulomb)
+
+    def force(self, state, inputs):
+        return preload_loss_friction(inputs["u"], state[0],
+                                     self.coefficient * self.total_load(inputs), self.loss,
+                                     self.distance_scale, self.velocity_tolerance)
+
+
+class BallToBallModel(_RunningDistanceModel, _TableModel):
+    """:func:`ball_to_ball_friction`: the table over the running distance."""
+
+    def __init__(self, **parameters):
+        _TableModel.__init__(self, **parameters)
+        self.distance_scale = (self.end - self.start) / (self.factors.size - 1)
+
+    def force(self, state, inputs):
+        return ball_to_ball_friction(inputs["u"], state[0],
+                                     self.coefficient * self.total_load(inputs), self.start,
+                                     self.end, self.factors, self.velocity_tolerance)
