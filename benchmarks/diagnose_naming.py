@@ -88,7 +88,9 @@ def write_page(path: Path, command: str, args, rows, right: int, hidden: int, wr
         f"{args.samples} samples from seed {args.seed} on; effect size 1, 1/2 or 1/3 of a clearly "
         f"visible one, noise 0.5, 1.0 or 1.5 % of the force range, every other draw unevenly "
         f"sampled. The truth laws differ in form from the candidates' laws. Steps 1-4 only "
-        f"(`diagnose/decide.py`, no co-simulation).", "",
+        f"(`diagnose/decide.py`, no co-simulation). The generator is the project's own: these "
+        f"figures test the workflow against its own assumptions about rigs and effects, not "
+        f"against real records (see docs/discrepancy-workflow.md for the EMPS records).", "",
         "| expected answer | named right |", "|---|---|",
         *(f"| `{answer}` | {named} / {total} |" for answer, named, total in rows), "",
         f"Hidden effects named right: {right} / {hidden} ({100 * right / max(hidden, 1):.1f} %).", "",

@@ -15,13 +15,18 @@ N = 513, 1025 and 2049 nodes, all measured in one run (wall time: the least of R
 
 Prints the times, iteration counts, H_c of each (they must agree), the ratios (b)/(a) and
 (c)/(a) at N = 2049, and the scaling check t(2049)/t(513) against the N log N ratio 4.9.
-Usage: ``python benchmarks/ehl_speed.py``.
+Usage: ``python benchmarks/ehl_speed.py [--out docs/ehl-speed.md]``; the printout is also written
+to that page.
 """
 from __future__ import annotations
 
+import argparse
+import builtins
 import math
+import sys
 import time
 import weakref
+from pathlib import Path
 
 import numpy as np
 from scipy.linalg import solve_banded, toeplitz
@@ -89,7 +94,17 @@ VARIANTS = {FAST: {}, DENSE: {"linear_step": dense_step, "nested": False},
             DENSE_NESTED: {"linear_step": dense_step}}
 
 
-def main() -> None:
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", type=Path,
+                        default=Path(__file__).resolve().parents[1] / "docs" / "ehl-speed.md")
+    args = parser.parse_args(argv)
+    lines = []
+
+    def print(text):  # noqa: A001 - the printout is the page
+        builtins.print(text)
+        lines.append(text)
+
     contact = LineContactEHL.from_dimensionless(W, U, G)
     times = {}
     print(f"Steady smooth line contact W={W:g} U={U:g} G={G:g}; wall time: least of {REPEAT} "
@@ -116,6 +131,12 @@ def main() -> None:
           f"N^2 ratio {(n1 / n0) ** 2:.0f}: {verdict} N log N")
     print(f"targets: t({n0}) = {small:.3f} s (< 0.2 s), t({n1}) = {fast:.3f} s (< 1 s), "
           f"(b) / (a) = {times[DENSE, n1] / fast:.1f} (>= 20)")
+    command = " ".join(["python", "benchmarks/ehl_speed.py", *(argv or sys.argv[1:])])
+    args.out.write_text("\n".join([
+        "# Speed of the mixed-EHL solver", "",
+        f"Written by `{command}` (wall times depend on the machine and its load; the ratios, "
+        f"measured side by side in one run, much less).", "",
+        __doc__.split("Prints")[0].split("\n", 2)[2].strip(), "", "```", *lines, "```", ""]))
 
 
 if __name__ == "__main__":

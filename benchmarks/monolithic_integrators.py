@@ -1,4 +1,4 @@
-"""Wall time, nfev and accuracy of the monolithic reference's integrators (issue 3).
+"""Wall time, nfev and accuracy of the monolithic reference's integrators.
 
 Runs the unloaded rig and the rig under a 9000 N / 4500 Hz harmonic load over 0.01 s with
 LSODA, Radau and DOP853 at rtol 1e-8 and 1e-10, and prints for each run the wall time (the least of a few runs), the

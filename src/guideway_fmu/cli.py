@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from fractions import Fraction
 from pathlib import Path
@@ -79,24 +80,39 @@ def _ehl_args(sub) -> None:
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
 
 
+def _in_option_terms(error: ValueError, names) -> ValueError:
+    """The analysis library quotes its arguments ('load'); the command line names options."""
+    text = re.sub(r"'(\w+)'", lambda m: f"--{m[1].replace('_', '-')}" if m[1] in names else m[0],
+                  str(error))
+    return ValueError(text)
+
+
 def _ehl(args) -> str:
     from .analysis import ehl as ea
     if args.command == "ehl":
         names = ("load", "velocity", "pressure_viscosity", "W", "U", "G", "radius", "e_reduced",
                  "viscosity", "roughness", "sliding_velocity", "peklenik")
-        result, summary = ea.solve_point(ea.point_contact(**{k: getattr(args, k) for k in names}),
-                                         args.nodes)
+        try:
+            contact = ea.roller_contact(**{k: getattr(args, k) for k in names})
+        except ValueError as error:
+            raise _in_option_terms(error, names) from None
+        result, summary = ea.solve_roller(contact, args.nodes)
         if args.plot:
             from .analysis.ehl_plots import plot_distribution
             summary["plot"] = str(plot_distribution(result, args.plot))
-        text = ea.format_point(summary) + (f"\nplot: {args.plot}" if args.plot else "")
+        text = ea.format_roller(summary) + (f"\nplot: {args.plot}" if args.plot else "")
         return json.dumps(summary, indent=2) if args.json else text
-    options = {k: getattr(args, k) for k in ("instance", "feed", "times", "count", "window",
-                                             "history", "floor", "roughness", "nodes")
-               if getattr(args, k) is not None}
-    if "times" in options:
-        options["times"] = ea.parse_times(options["times"])
-    instants, files = ea.ehl_cycle(args.run_dir, args.out, **options)
+    names = ("instance", "feed", "times", "count", "window", "history", "floor", "roughness",
+             "nodes")
+    options = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
+    try:
+        if "times" in options:
+            options["times"] = ea.parse_times(options["times"])
+        instants, files = ea.ehl_cycle(args.run_dir, args.out, **options)
+    except ValueError as error:
+        raise _in_option_terms(error, names) from None
+    except FileNotFoundError as error:
+        raise FileNotFoundError(f"{error} (is it the --out folder of guideway-fmu run?)") from None
     return ea.format_cycle(instants) + "\n" + "\n".join(str(f) for f in files)
 
 

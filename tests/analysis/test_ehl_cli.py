@@ -79,6 +79,7 @@ def test_ehl_table_and_plot(capsys, tmp_path):
     ([], ["--load", "--W"]),
     (["--load", "-5", "--velocity", "0.1"], ["--load", "> 0"]),
     (["--W", "1e-4", "--U", "0", "--G", "4500"], ["--U", "> 0"]),
+    (["--W", "1e-4", "--U", "1e-11", "--G", "4500", "--e-reduced=-1e9"], ["--e-reduced", "> 0"]),
     (["--W", "1e-4", "--U", "1e-11", "--G", "4500", "--nodes", "8"], ["nodes", ">= 33"]),
     (["--W", "1e-4", "--U", "1e-11", "--G", "4500", "--peklenik", "9"], ["--peklenik", "--roughness"]),
     (["--W", "1e-4", "--U", "1e-11", "--G", "4500", "--roughness", "1e-8", "--peklenik", "2"],
@@ -131,9 +132,9 @@ def test_select_instants_spread_over_the_oscillation_of_the_largest_peak():
 @pytest.mark.parametrize("kwargs, message", [
     ({"times": [-1e-6]}, "outside the record"),
     ({"times": [1.0]}, "outside the record"),
-    ({"count": 27}, "--count"),
-    ({"count": 0}, "--count"),
-    ({"window": -1.0}, "--window"),
+    ({"count": 27}, "'count'"),
+    ({"count": 0}, "'count'"),
+    ({"window": -1.0}, "'window'"),
 ])
 def test_select_instants_refuses_bad_choices(kwargs, message):
     t = np.arange(50) * 1e-6

@@ -82,11 +82,12 @@ COLUMNS = ("label", "time", "load", "load_per_length", "u", "u_m", "status", "me
            "h_analytical", "film_ratio", "h_c_pan_hamrock", "error")
 
 
-def _option(name: str) -> str:
-    return "--" + name.replace("_", "-")
+def _quoted(name: str) -> str:
+    """An argument's name as errors quote it (the command line turns it into its option)."""
+    return f"'{name}'"
 
 
-_POINT_CHECKS = {  # checks of ``ehl``'s options (a steady film needs u_m > 0)
+_CONTACT_CHECKS = {  # checks of a roller contact's arguments (a steady film needs u_m > 0)
     "load": checks.positive, "velocity": checks.positive, "pressure_viscosity": checks.non_negative,
     "W": checks.positive, "U": checks.positive, "G": checks.non_negative,
     "radius": checks.positive, "e_reduced": checks.positive, "viscosity": checks.positive,
@@ -96,46 +97,46 @@ _POINT_CHECKS = {  # checks of ``ehl``'s options (a steady film needs u_m > 0)
 
 # --- guideway-fmu ehl ------------------------------------------------------------------------
 
-def point_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, U=None, G=None,
+def roller_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, U=None, G=None,
                   radius=None, e_reduced=None, viscosity=None, roughness=None,
                   sliding_velocity=None, peklenik=None) -> LineContactEHL:
-    """The contact of ``guideway-fmu ehl`` from either dimensional input (load w' [N/m] and
+    """The line contact of one roller from either dimensional input (load w' [N/m] and
     entrainment velocity u_m [m/s] required, alpha [1/Pa] optional) or Hamrock's W, U, G (all
     three). radius [m] (default RADIUS), e_reduced [Pa], viscosity [Pa s], roughness [m],
     sliding_velocity [m/s] and peklenik (the average flow model's roughness orientation, which
     switches that model on; needs roughness) apply to both; None leaves LineContactEHL's
-    default. Raises ValueError naming the command-line options of a mixed or incomplete set."""
+    default. Raises ValueError naming the arguments of a mixed or incomplete set."""
     for name, value in locals().copy().items():
         if value is not None:
-            _POINT_CHECKS[name](_option(name), value)
+            _CONTACT_CHECKS[name](_quoted(name), value)
     dimensional = {"load": load, "velocity": velocity, "pressure_viscosity": pressure_viscosity}
     groups = {"W": W, "U": U, "G": G}
-    given_d = [_option(k) for k, v in dimensional.items() if v is not None]
-    given_g = [_option(k) for k, v in groups.items() if v is not None]
+    given_d = [_quoted(k) for k, v in dimensional.items() if v is not None]
+    given_g = [_quoted(k) for k, v in groups.items() if v is not None]
     if given_d and given_g:
         raise ValueError(f"give dimensional input or W, U, G, not both: {', '.join(given_d)} "
                          f"mixed with {', '.join(given_g)}")
     if not given_d and not given_g:
-        raise ValueError("no contact given: pass --load and --velocity (dimensional) or "
-                         "--W, --U and --G (dimensionless)")
+        raise ValueError("no contact given: pass 'load' and 'velocity' (dimensional) or "
+                         "'W', 'U' and 'G' (dimensionless)")
     common = {k: v for k, v in {"e_reduced": e_reduced, "viscosity": viscosity,
                                 "roughness": roughness, "sliding_velocity": sliding_velocity}.items()
               if v is not None}
     if peklenik is not None:
         if not roughness:
-            raise ValueError("--peklenik selects the average flow model of rough surfaces; "
-                             "give --roughness > 0 with it")
-        common.update(peklenik=flow_factors.check_peklenik("--peklenik", peklenik),
+            raise ValueError("'peklenik' selects the average flow model of rough surfaces; "
+                             "give 'roughness' > 0 with it")
+        common.update(peklenik=flow_factors.check_peklenik("'peklenik'", peklenik),
                       average_flow=True)
     radius = RADIUS if radius is None else radius
     if given_g:
-        missing = [_option(k) for k, v in groups.items() if v is None]
+        missing = [_quoted(k) for k, v in groups.items() if v is None]
         if missing:
-            raise ValueError(f"dimensionless input needs --W, --U and --G; missing {', '.join(missing)}")
+            raise ValueError(f"dimensionless input needs 'W', 'U' and 'G'; missing {', '.join(missing)}")
         return LineContactEHL.from_dimensionless(W, U, G, radius=radius, **common)
-    missing = [_option(k) for k in ("load", "velocity") if dimensional[k] is None]
+    missing = [_quoted(k) for k in ("load", "velocity") if dimensional[k] is None]
     if missing:
-        raise ValueError(f"dimensional input needs --load and --velocity; missing {', '.join(missing)}")
+        raise ValueError(f"dimensional input needs 'load' and 'velocity'; missing {', '.join(missing)}")
     if pressure_viscosity is not None:
         common["pressure_viscosity"] = pressure_viscosity
     contact = LineContactEHL(load=load, radius=radius, entrainment_velocity=velocity, **common)
@@ -143,7 +144,7 @@ def point_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None, 
     return contact
 
 
-def solve_point(contact: LineContactEHL, nodes: int | None = None) -> tuple[EHLResult, dict]:
+def solve_roller(contact: LineContactEHL, nodes: int | None = None) -> tuple[EHLResult, dict]:
     """Steady solution and its JSON-ready summary: EHLResult.to_dict() plus the Hertz half-width
     b [m], peak pressure p_H [Pa] and Pan-Hamrock's H_c, H_min for comparison."""
     result = solve_steady(contact, nodes=nodes)
@@ -156,8 +157,8 @@ def solve_point(contact: LineContactEHL, nodes: int | None = None) -> tuple[EHLR
     return result, out
 
 
-def format_point(d: dict) -> str:
-    """A short readable table of :func:`solve_point`'s summary."""
+def format_roller(d: dict) -> str:
+    """A short readable table of :func:`solve_roller`'s summary."""
     rows = [
         ("W, U, G", f"{d['W']:.4g}, {d['U']:.4g}, {d['G']:.4g}"),
         ("load w'", f"{d['load']:.4g} N/m"),
@@ -195,7 +196,7 @@ class RunRecord:
 
 def _need(path: Path) -> Path:
     if not path.is_file():
-        raise FileNotFoundError(f"{path} not found (is it the --out folder of guideway-fmu run?)")
+        raise FileNotFoundError(f"{path} not found (a run folder holds results.csv and summary.json)")
     return path
 
 
@@ -216,7 +217,7 @@ def read_run(run_dir: str | Path, instance: str = "Contact", feed: str = "Feed.u
     missing = [c for c in names.values() if c not in header]
     if missing:
         raise ValueError(f"{csv_path} has no column {', '.join(missing)} "
-                         f"(columns: {', '.join(header)}); see --instance and --feed")
+                         f"(columns: {', '.join(header)}); see 'instance' and 'feed'")
     if data.shape[0] < 2 or data.shape[1] != len(header):
         raise ValueError(f"{csv_path}: need at least 2 rows of {len(header)} values")
     cols = {k: data[:, header.index(c)] for k, c in names.items()}
@@ -238,11 +239,11 @@ def read_run(run_dir: str | Path, instance: str = "Contact", feed: str = "Feed.u
 
 
 def parse_times(text: str) -> list[float]:
-    """``"t1,t2,..."`` [s] as floats; ValueError naming --times otherwise."""
+    """``"t1,t2,..."`` [s] as floats; ValueError naming 'times' otherwise."""
     try:
         return [float(t) for t in text.split(",")]
     except ValueError:
-        raise ValueError(f"--times must be comma-separated times in s, got {text!r}") from None
+        raise ValueError(f"'times' must be comma-separated times in s, got {text!r}") from None
 
 
 def select_instants(time, load, *, times=None, count: int = 10,
@@ -260,11 +261,11 @@ def select_instants(time, load, *, times=None, count: int = 10,
         targets = np.asarray(times, dtype=float)
         outside = [t for t in targets if not (time[0] <= t <= time[-1])]
         if targets.size == 0 or outside:
-            raise ValueError(f"--times: instant {outside[0] if outside else 'none'} s is outside "
+            raise ValueError(f"'times': instant {outside[0] if outside else 'none'} s is outside "
                              f"the record [{time[0]:.6g}, {time[-1]:.6g}] s")
     else:
         if not 1 <= count <= len(string.ascii_uppercase):
-            raise ValueError(f"--count must be between 1 and 26, got {count}")
+            raise ValueError(f"'count' must be between 1 and 26, got {count}")
         if not np.max(load) > 0.0:
             raise ValueError("the roller load is never positive in the record: nothing to analyse")
         peak = int(np.argmax(load))
@@ -277,7 +278,7 @@ def select_instants(time, load, *, times=None, count: int = 10,
             start, stop = time[lo], time[hi]
         else:
             if not (math.isfinite(window) and window > 0.0):
-                raise ValueError(f"--window must be > 0 s, got {window}")
+                raise ValueError(f"'window' must be > 0 s, got {window}")
             start = max(time[0], time[peak] - 0.5 * window)
             stop = min(time[-1], time[peak] + 0.5 * window)
         targets = start + (np.arange(count) + 0.5) * (stop - start) / count
@@ -302,7 +303,7 @@ def _march(template, time, w, u_m, start, stop, floor, nodes):
     loads = np.maximum(w[part], floor * np.max(w[part]))
     if not u_m[start] > 0.0:
         raise ValueError(f"no entrainment (u = 0) at t = {time[start]:.6g} s, where the history "
-                         "starts: no steady film to start from; give a longer --history")
+                         "starts: no steady film to start from; give a longer 'history'")
     first = replace(template, load=float(loads[0]), entrainment_velocity=float(u_m[start]))
     inlet, outlet, default_nodes = solver.transient_grid(first, float(np.max(loads)))
     return solve_transient(first, time[part], loads, entrainment_velocities=u_m[part],
@@ -329,9 +330,9 @@ def analyse_instants(record: RunRecord, instants, *, history: float | None = Non
     largest load; ``nodes`` overrides the grid. A solution that fails is reported in its row
     (status "failed" and the error), a roller without load as status "separated"."""
     if history is not None and not (math.isfinite(history) and history >= 0.0):
-        raise ValueError(f"--history must be >= 0 s, got {history}")
+        raise ValueError(f"'history' must be >= 0 s, got {history}")
     if not (math.isfinite(floor) and 0.0 < floor <= 1.0):
-        raise ValueError(f"--floor must lie in (0, 1], got {floor}")
+        raise ValueError(f"'floor' must lie in (0, 1], got {floor}")
     p = record.parameters
     template = LineContactEHL(load=1.0, radius=float(p["roller_radius"]), entrainment_velocity=1.0,
                               e_reduced=float(p["e_reduced"]), viscosity=float(p["viscosity"]),
@@ -473,9 +474,9 @@ def ehl_cycle(run_dir, out, *, instance: str = "Contact", feed: str = "Feed.u", 
               nodes: int | None = None) -> tuple[list[Instant], list[Path]]:
     """Read the run, choose the instants, solve them and write the outputs (see above)."""
     if roughness < 0.0 or not math.isfinite(roughness):
-        raise ValueError(f"--roughness must be >= 0 m, got {roughness}")
+        raise ValueError(f"'roughness' must be >= 0 m, got {roughness}")
     if nodes is not None and nodes < 33:
-        raise ValueError(f"--nodes must be >= 33, got {nodes}")
+        raise ValueError(f"'nodes' must be >= 33, got {nodes}")
     record = read_run(run_dir, instance, feed)
     chosen = select_instants(record.time, record.load, times=times, count=count, window=window)
     instants = analyse_instants(record, chosen, history=history, floor=floor,

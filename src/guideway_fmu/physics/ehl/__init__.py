@@ -32,65 +32,25 @@ Unknowns P_i, H_i, H_00 on a uniform grid; the elastic operator is applied by FF
 O(N log N) and never formed. Newton steps are solved by GMRES (scipy) on the system
 left-preconditioned by an exact banded LU (LAPACK dgbtrf) of the Jacobian in which the film
 equation is differenced twice (its elastic kernel then decays like 1/k^2) and cut to BAND
-nodes, the dense rows (film at the ends, load) eliminated by a 3 x 3 Schur complement.
-With s = sqrt(2 H_c) [Hertz half-widths] the inlet length (H_c estimated), Newton starts
-from the Hertz pressure on a coarse grid (>= 129 nodes, spacing <= s/4) and
-each solution starts the grid with twice the nodes (nested iteration); the damping keeps the
-viscosity change per step below a factor e. Measured at W = 1e-4, U = 1e-11, G = 4500, on
-this 2-core machine under a load average of 4-6 (so the absolute times carry a factor ~2):
+nodes, the dense rows (film at the ends, load) eliminated by a 3 x 3 Schur complement: a dense
+Newton of the same equations costs O(N^3) per step. With s = sqrt(2 H_c) [Hertz half-widths]
+the inlet length (H_c estimated), Newton starts from the Hertz pressure on a coarse grid
+(>= 129 nodes, spacing <= s/4) and each solution starts the grid with twice the nodes (nested
+iteration), so the finest grid needs a few Newton steps only; the damping keeps the viscosity
+change per step below a factor e. At heavy load Newton from the Hertz pressure diverges on grids
+that do not resolve the exit constriction, hence the coarsest-grid rule.
 
-    BAND (nodes)              4      8     16     32
-    N = 513:  time [ms]     133    118    129    182
-    N = 2049: time [ms]     339    311    355    563
-    N = 2049: GMRES its     193    144    106     83   (24 Newton steps on all grids)
-
-GMRES needs 2-11 iterations per Newton step, growing slowly with N (75, 104, 144 in total for
-N = 513, 1025, 2049). The nested start does 5 of its 24 Newton steps on the finest grid;
-Newton from the Hertz pressure on the N = 2049 grid itself needs 19 there (benchmark (b)).
-At heavy load Newton from the Hertz pressure diverges on grids coarser than about s/4
-(W = 5e-4, U = 1e-12: fails on 257 nodes, spacing 0.37 s; 6 steps on 513, 0.19 s), where the
-exit constriction is not resolved, hence the coarsest-grid rule.
-benchmarks/ehl_speed.py, two runs: N = 513 in 0.10-0.11 s, N = 2049 in 0.29-0.30 s (t ratio
-2.6-3.0 < N log N ratio 4.9); the dense-matrix Newton of the same equations from the Hertz
-start takes 20.5-21.1 s at N = 2049 (70x), the dense LU inside the same nested iteration
-8.6-10.7 s (28-37x).
-
-Validation (tests/test_ehl.py) and Pan-Hamrock agreement
---------------------------------------------------------
-Independent checks: Hertz's flat film for the Hertz pressure (elastic kernel, closed form);
-Martin's rigid-isoviscous film 4.9 U/W (0.7 %); Hertz pressure at heavy load (M = 500, within
-0.01 p_H); grid convergence (second order; the default grid, spacing s/40, keeps H_c and
-H_min within ~1 % of the grid limit); load balance and constant mass flow equal to u_m rho h
-where dp/dx = 0; rigid-isoviscous pure squeeze (film history within 0.5 %) and friction
-(1 %) by quadrature; the paper's check point with Table 4 (asperity share 4 % at
-lambda = 0.1, matching the Greenwood-Tripp pressure on a Hertz gap). The film rises a little
-with roughness at a fixed load (the fluid carries less of it; eq. 18 has no flow factors).
-With ``average_flow`` (module ``flow_factors``, Patir and Cheng's average Reynolds equation)
-and ridges along the motion (peklenik 9) it falls monotonically: 45.9 nm smooth, 45.1 / 40.7 /
-31.2 / 9.0 nm at sigma = 0.01 / 0.03 / 0.05 / 0.1 um (lambda 4.5 / 1.4 / 0.6 / 0.1).
-
-Pan and Hamrock (1989): H_c = 2.922 W^-0.166 U^0.692 G^0.470, H_min = 1.714 W^-0.128 U^0.694
-G^0.568; deviation of this solver (default grid, E' = 2e11 Pa, mu0 = 0.195 Pa s) in %:
-
-==========  ======  ======  ======  ======  ======  ======  ======  ======  ======
-W \\ U, G    1e-12                   1e-11                   1e-10
-\\           3500    4500    5000    3500    4500    5000    3500    4500    5000
-==========  ======  ======  ======  ======  ======  ======  ======  ======  ======
-2e-5 H_c    +1.6    +3.3    +4.4    +1.0    +3.9    +5.3    -7.2    -1.8    +0.3
-2e-5 H_min  +2.9    +2.1    +2.2    +1.5    +2.4    +3.0    +0.2    +1.9    +2.9
-1e-4 H_c    -0.4    +2.7    +4.3    +2.2    +7.0    +9.4    +4.8    +10.6   +13.3
-1e-4 H_min  -0.2    +0.4    +1.1    +1.0    +3.6    +5.0    +3.1    +7.0    +8.7
-3e-4 H_c    -1.4    +2.3    +4.2    +2.9    +8.6    +11.3   +8.1    +15.1   +18.3
-3e-4 H_min  -2.3    -0.9    -0.0    +0.5    +3.9    +5.5    +4.6    +9.3    +11.4
-==========  ======  ======  ======  ======  ======  ======  ======  ======  ======
-
-Within 10 % at 22 of the 27 points. H_c exceeds the fit by 10.6-18.3 % at five points of high
-load, speed and G, (W, U, G) = (1e-4, 1e-10, 4500 | 5000), (3e-4, 1e-11, 5000) and
-(3e-4, 1e-10, 4500 | 5000), H_min only at the last (11.4 %). Toward that corner the film grows with G as G^0.72 against the fit's G^0.47, close to
-inlet theory (Grubin G^(8/11), Moes' asymptote L^(3/4)); grid and domain are converged to
-0.2 %, and other Roelands parameters (mu0, or E' at fixed G) move it by about 3 % only.
-Dowson and Higginson's H_min = 2.65 U^0.70 G^0.54 W^-0.13, a regression independent of Pan and
-Hamrock's, agrees within -8.5 % to +3.3 % at all 27 points (+3.3 % at that corner).
+Validation
+----------
+Limiting cases in tests/physics/test_ehl.py: Hertz's flat film for the Hertz pressure (elastic
+kernel, closed form); Martin's rigid-isoviscous film 4.9 U/W; Hertz pressure at heavy load;
+grid convergence (second order; the default grid, spacing s/40, keeps H_c and H_min within
+about 1 % of the grid limit); load balance and constant mass flow; rigid-isoviscous pure
+squeeze and friction by quadrature; the paper's check point with Table 4. The comparison with
+Pan and Hamrock's and Dowson and Higginson's film formulas over W, U, G, and the film over
+roughness with the average flow model, are on docs/ehl-validation.md
+(``benchmarks/ehl_validation.py``); the speed against a dense Newton on docs/ehl-speed.md
+(``benchmarks/ehl_speed.py``).
 """
 from .inputs import LineContactEHL, lubricant_state, martin, pan_hamrock
 from .results import EHLResult, TransientResult, friction
