@@ -15,6 +15,8 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 
+import numpy as np
+
 
 class ContinuousModel(ABC):
     """Base class; a stateless model overrides :meth:`outputs` only."""
@@ -55,3 +57,13 @@ class Algebraic(ContinuousModel):
 
     def outputs(self, t, state, inputs, wanted=None):
         return self.function(**{name: inputs[name] for name in self.inputs})
+
+
+def rk4_step(model: ContinuousModel, t: float, state, inputs: dict, h: float):
+    """The state after one classical Runge-Kutta step of ``h`` [s], inputs held over it."""
+    y = np.asarray(state, dtype=float)
+    k1 = np.asarray(model.derivatives(t, y, inputs))
+    k2 = np.asarray(model.derivatives(t + h / 2, y + h / 2 * k1, inputs))
+    k3 = np.asarray(model.derivatives(t + h / 2, y + h / 2 * k2, inputs))
+    k4 = np.asarray(model.derivatives(t + h, y + h * k3, inputs))
+    return y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
