@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle``."""
+"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes``."""
 from __future__ import annotations
 
 import argparse
@@ -144,6 +144,9 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("facts", help="print k, delta0, film and natural frequency of the rig of Soleimanian et al. (2020)")
     p.add_argument("--u", type=float, default=0.29, help="feed speed [m/s] (default 0.29)")
     _ehl_args(sub)
+    p = sub.add_parser("modes", help="natural frequencies and mode shapes of a ball-guide carriage")
+    p.add_argument("carriage", type=Path, help="carriage file (docs/ball-guides.md)")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
     args = parser.parse_args(argv)
     try:
         if args.command == "build":
@@ -173,6 +176,10 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "scenarios":
             from . import scenarios
             print("\n".join(scenarios.names()))
+        elif args.command == "modes":
+            from .analysis import carriage_modes
+            result = carriage_modes.analyse(carriage_modes.read_carriage(args.carriage))
+            print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result))
         elif args.command == "facts":
             from .demo import rig_facts
             print(json.dumps(rig_facts(args.u), indent=2))

@@ -1,0 +1,160 @@
+"""Natural frequencies and mode shapes of a ball-guide carriage from a carriage file
+(``guideway-fmu modes CARRIAGE.toml``), SI units; the format is in docs/ball-guides.md.
+
+The ball stiffnesses are given (``[balls] stiffness``, one value per ball of a row, both rows
+alike: Wu et al. 2012, Table 2) or computed: the balls' Hertz constant from ``diameter`` and
+``conformity`` (two equal contacts in series), every ball preloaded to ``preload`` [N], the
+static equilibrium under ``[load]``, then each ball's tangent stiffness (physics/ball_carriage.py).
+"""
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..physics import ball_carriage as bc
+from ..physics import hertz_point
+
+LOAD_KEYS = ("force_y", "force_z", "moment_x", "moment_y", "moment_z")  # order of bc.LOADS
+CARRIAGE_KEYS = ("mass", "inertia", "contact_angle_deg", "d", "e")
+HERTZ_KEYS = ("diameter", "conformity", "preload")
+
+
+@dataclass(frozen=True)
+class CarriageCase:
+    """A carriage file's content: the body, the ball layout, the stiffness source and the load."""
+
+    path: Path
+    body: bc.CarriageBody
+    per_row: int
+    pitch: float
+    stiffness: tuple | None  # per ball of a row [N/m], or None: the Hertz route
+    k_h: float | None  # Hertz constant of a ball [N/m^1.5]
+    preload: float | None  # N per ball
+    load: np.ndarray  # (F_y, F_z, M_x, M_y, M_z)
+
+    def positions(self) -> np.ndarray:
+        return bc.ball_positions(self.per_row, self.pitch)
+
+
+def _table(path, data, name, required=True) -> dict:
+    table = data.get(name, {} if not required else None)
+    if not isinstance(table, dict):
+        raise ValueError(f"{path}: " + (f"table [{name}] is missing" if table is None
+                                        else f"[{name}] must be a table"))
+    return table
+
+
+def _number(path, table_name, table, key, check=None):
+    value = table.get(key)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
+        raise ValueError(f"{path}: [{table_name}] key {key!r}: "
+                         + ("missing" if value is None else f"must be a number, got {value!r}"))
+    if check is not None and not check(value):
+        raise ValueError(f"{path}: [{table_name}] key {key!r}: must be > 0, got {value!r}")
+    return float(value)
+
+
+def read_carriage(path) -> CarriageCase:
+    """Read and check a carriage file; ValueError or FileNotFoundError naming the file, table
+    and key."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise FileNotFoundError(f"{path}: no such carriage file") from None
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path}: not valid TOML: {error}") from None
+    carriage, balls = _table(path, data, "carriage"), _table(path, data, "balls")
+    load_table = _table(path, data, "load", required=False)
+    positive = (lambda v: v > 0)
+    unknown = [f"[{name}] key {key!r}" for name, table, keys in (
+        ("carriage", carriage, CARRIAGE_KEYS),
+        ("balls", balls, ("per_row", "pitch", "stiffness", *HERTZ_KEYS)),
+        ("load", load_table, LOAD_KEYS)) for key in table if key not in keys]
+    if unknown:
+        raise ValueError(f"{path}: unknown {', '.join(unknown)}")
+    inertia = carriage.get("inertia")
+    if (not isinstance(inertia, list) or len(inertia) != 3
+            or not all(isinstance(j, (int, float)) and j > 0 for j in inertia)):
+        raise ValueError(f"{path}: [carriage] key 'inertia': must be [J_x, J_y, J_z] > 0 in "
+                         f"kg m^2, got {inertia!r}")
+    angle = _number(path, "carriage", carriage, "contact_angle_deg")
+    if not 0.0 < angle < 90.0:
+        raise ValueError(f"{path}: [carriage] key 'contact_angle_deg': must lie in (0, 90), "
+                         f"got {angle!r}")
+    body = bc.CarriageBody(_number(path, "carriage", carriage, "mass", positive),
+                           tuple(float(j) for j in inertia), np.radians(angle),
+                           _number(path, "carriage", carriage, "d"),
+                           _number(path, "carriage", carriage, "e"))
+    per_row = balls.get("per_row")
+    if isinstance(per_row, bool) or not isinstance(per_row, int) or per_row < 1:
+        raise ValueError(f"{path}: [balls] key 'per_row': must be a whole number >= 1, "
+                         f"got {per_row!r}")
+    pitch = _number(path, "balls", balls, "pitch", positive)
+    load = np.array([_number(path, "load", load_table, k) if k in load_table else 0.0
+                     for k in LOAD_KEYS])
+    hertz = [k for k in HERTZ_KEYS if k in balls]
+    if "stiffness" in balls:
+        if hertz:
+            raise ValueError(f"{path}: [balls]: give 'stiffness' or {', '.join(HERTZ_KEYS)}, "
+                             f"not both (found {', '.join(hertz)})")
+        stiffness = balls["stiffness"]
+        if (not isinstance(stiffness, list) or len(stiffness) != per_row
+                or not all(isinstance(k, (int, float)) and k > 0 for k in stiffness)):
+            raise ValueError(f"{path}: [balls] key 'stiffness': must be {per_row} values "
+                             f"(per_row) > 0 in N/m, got {stiffness!r}")
+        if np.any(load):
+            raise ValueError(f"{path}: [load] needs the Hertz route ({', '.join(HERTZ_KEYS)}): "
+                             f"given stiffnesses already hold the load's effect")
+        return CarriageCase(path, body, per_row, pitch, tuple(map(float, stiffness)), None, None,
+                            load)
+    missing = [k for k in HERTZ_KEYS if k not in balls]
+    if missing:
+        raise ValueError(f"{path}: [balls]: give 'stiffness' or all of {', '.join(HERTZ_KEYS)}; "
+                         f"missing {', '.join(missing)}")
+    diameter = _number(path, "balls", balls, "diameter", positive)
+    conformity = _number(path, "balls", balls, "conformity")
+    try:
+        k_h = hertz_point.ball_constant(hertz_point.BallGroove(diameter, conformity))
+    except ValueError as error:
+        raise ValueError(f"{path}: [balls] {error}") from None
+    return CarriageCase(path, body, per_row, pitch, None, k_h,
+                        _number(path, "balls", balls, "preload", positive), load)
+
+
+def analyse(case: CarriageCase) -> dict:
+    """Modes of the carriage: ``{"modes": [...], "ball_stiffness": [...], "displacement": {...}}``,
+    modes in ascending order, rigid-body modes (frequency 0, label 'rigid') included."""
+    directions = bc.contact_directions(case.body, case.positions())
+    if case.stiffness is not None:
+        k = np.concatenate([case.stiffness, case.stiffness])
+        q = np.zeros(5)
+    else:
+        balls = bc.HertzBalls(case.body, case.positions(), case.k_h, case.preload)
+        try:
+            q = balls.equilibrium(case.load)
+        except ValueError as error:
+            raise ValueError(f"{case.path}: [load]: {error}") from None
+        k = balls.ball_stiffness(q)
+    found = bc.modes(bc.stiffness_matrix(directions, k), case.body.mass_matrix())
+    rows = [{"frequency_hz": float(f), "label": found.label(i),
+             "participation": dict(zip(bc.DOF, map(float, found.participation[i])))}
+            for i, f in enumerate(found.frequencies)]
+    return {"modes": rows, "ball_positions": case.positions().tolist(),
+            "ball_stiffness": {"row_1": k[:case.per_row].tolist(),
+                               "row_2": k[case.per_row:].tolist()},
+            "displacement": dict(zip(bc.DOF, map(float, q)))}
+
+
+def format_modes(result: dict) -> str:
+    """A readable table of :func:`analyse`'s result."""
+    lines = [f"{'mode':>4} {'f [Hz]':>10}  {'label':22s} " + " ".join(f"{d:>6s}" for d in bc.DOF)]
+    for i, mode in enumerate(result["modes"], 1):
+        lines.append(f"{i:4d} {mode['frequency_hz']:10.1f}  {mode['label']:22s} "
+                     + " ".join(f"{mode['participation'][d]:6.3f}" for d in bc.DOF))
+    lines.append("participation: share of the mode's kinetic energy in each coordinate; "
+                 "'rigid': the lateral shift with roll that no ball of two rows resists")
+    return "\n".join(lines)
