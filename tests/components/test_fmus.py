@@ -169,7 +169,7 @@ def test_fmu_passes_fmpy_validation(fmu_dir, name):
 # -- 2. modelDescription -------------------------------------------------------------------------
 # Base-unit exponents (kg, m, s) worked out by hand for the units of the FMU contracts.
 HAND_BASE_UNITS = {"m": (0, 1, 0), "m/s": (0, 1, -1), "m/s2": (0, 1, -2), "N": (1, 1, -2),
-                   "N/m": (1, 0, -2), "N.s/m": (1, 0, -1)}
+                   "N/m": (1, 0, -2), "N.s/m": (1, 0, -1), "N.m": (1, 2, -2), "kg.m2": (1, 2, 0)}
 
 _CONTACT = {"y": ("input", "m"), "y_dot": ("input", "m/s"), "u": ("input", "m/s"),
             "F_contact": ("output", "N"), "F_upper": ("output", "N"), "F_lower": ("output", "N"),
@@ -196,6 +196,13 @@ CONTRACT = {
                          "F_boundary": ("output", "N"), "F_viscous": ("output", "N")},
     "FrictionCoulomb": {"F_upper": ("input", "N"), "F_lower": ("input", "N"),
                         "u": ("input", "m/s"), "F_friction": ("output", "N")},
+    "BallCarriage5DOF": {"F_y": ("input", "N"), "F_z": ("input", "N"), "M_x": ("input", "N.m"),
+                         "M_y": ("input", "N.m"), "M_z": ("input", "N.m"),
+                         "u_feed": ("input", "m/s"), "u": ("output", "m"), "v": ("output", "m"),
+                         "phi": ("output", "rad"), "theta": ("output", "rad"),
+                         "psi": ("output", "rad"), "v_dot": ("output", "m/s"),
+                         "theta_dot": ("output", "rad/s"), "row_load_1": ("output", "N"),
+                         "row_load_2": ("output", "N")},
 }
 
 
@@ -468,6 +475,7 @@ SIMULATIONS = {  # name -> start values of a short simulate_fmu run
     "ContactDryHertz": {"y": 1e-6},
     "ContactEHL": {"y": 1e-6, "u": 0.29},
     "FrictionCoulomb": {"F_upper": 115.0, "F_lower": 115.0, "u": 0.1},
+    "BallCarriage5DOF": {"static_M_y": 1.45, "u_feed": 0.3},
 }
 
 
@@ -490,7 +498,8 @@ def test_fmus_instantiate_again_after_a_previous_instance_was_freed(fmu_dir):
      1e-4),
     ("ContactEHL", {"film_model": "extrapolated", "u": 0.29, "y": 1e-6, "y_dot": 1e-3}, 1e-5),
     ("FeedKinematics", {}, 1e-3),
-], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics"])
+    ("BallCarriage5DOF", {"static_M_y": 2.9, "F_z": -5.0, "u_feed": 0.3}, 1e-5),
+], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics", "BallCarriage5DOF"])
 def test_restored_fmu_state_replays_identically(open_fmu, name, start, h):
     slave = open_fmu(name, **start).step(h, n=3)
     state, time = slave.fmu.getFMUstate(), slave.time
@@ -523,6 +532,8 @@ def case(*values, id):
          id="VerticalDynamics-law_force_1um-negative"),
     case("VerticalDynamics", {"F_ext": 1000.0}, {"law_approach_upper": NAN}, "law_approach_upper",
          id="VerticalDynamics-law_approach_upper-nan"),
+    case("BallCarriage5DOF", {"static_M_y": 1.0}, {"M_z": NAN}, "M_z",
+         id="BallCarriage5DOF-M_z-nan"),
 ])
 def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, start, bad,
                                                               name_in_message):
@@ -544,6 +555,10 @@ def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, st
          "rollers_per_groove", id="ContactDryHertz-rollers_per_groove"),
     case("FeedKinematics", {"profile": "nope"}, {"profile": "biharmonic"}, "profile",
          id="FeedKinematics-profile"),
+    case("BallCarriage5DOF", {"conformity": 0.45}, {"conformity": 0.534}, "conformity",
+         id="BallCarriage5DOF-conformity"),
+    case("BallCarriage5DOF", {"ball_stiffness": "1e7 x"}, {"ball_stiffness": ""},
+         "ball_stiffness", id="BallCarriage5DOF-ball_stiffness"),
     case("FeedKinematics", {"profile": "table"}, {"profile": "biharmonic"}, "table_file",
          id="FeedKinematics-table_file-empty"),
     case("FeedKinematics", {"profile": "table", "table_file": "/nonexistent_dir/feed.csv"},
@@ -675,3 +690,49 @@ def test_ehl_film_integration_matches_tight_scipy_solution_of_the_array_physics(
     assert change > 1e-8  # the film really moved (from its 0.05 m/s value towards 0.29 m/s)
     assert contact.get("h_upper") == pytest.approx(sol.y[0, -1], abs=1e-4 * change)
     assert contact.get("h_lower") == pytest.approx(sol.y[1, -1], abs=1e-4 * abs(sol.y[1, -1] - films[1]))
+
+
+# -- 7. the ball carriage ------------------------------------------------------------------------
+def test_ball_carriage_starts_in_equilibrium_under_the_moment_hand_check(open_fmu):
+    # Wu et al. (2012): M_y tilts the carriage (theta > 0); the rows share the load alike; at
+    # rest nothing moves
+    slave = open_fmu("BallCarriage5DOF", static_M_y=2.9)
+    before = slave.outputs()
+    slave.step(1e-5, n=20)
+    after = slave.outputs()
+    assert after["theta"] > 0.0 and after["theta"] == pytest.approx(before["theta"], rel=1e-9)
+    assert after["row_load_1"] == pytest.approx(after["row_load_2"], rel=1e-12)
+    assert after["row_load_1"] == pytest.approx(9 * 46.6, rel=0.02)  # ~ 9 balls at preload
+
+
+def test_ball_carriage_vertical_oscillation_has_the_modal_frequency_limiting_case(open_fmu):
+    # undamped, released from equilibrium under F_z = -5 N when the force drops to 0: the
+    # vertical mode alone, at the frequency of the tangent stiffness (3.6 kHz for Table 2)
+    from guideway_fmu.physics import ball_carriage as bc
+    slave = open_fmu("BallCarriage5DOF", F_z=-0.5, ball_damping=0.0)
+    slave.set(F_z=0.0)
+    h, v = 2e-6, []
+    for _ in range(1500):
+        slave.step(h)
+        v.append(slave.get("v"))
+    v = np.array(v) - np.mean(v)
+    crossings = np.flatnonzero(np.sign(v[:-1]) != np.sign(v[1:]))
+    t = (crossings - v[crossings] / (v[crossings + 1] - v[crossings])) * h
+    frequency = (len(t) - 1) / (2 * (t[-1] - t[0]))
+    model = bc.from_parameters(**{**slave_parameters(), "ball_damping": 0.0})
+    balls = bc.HertzBalls(model.body, bc.ball_positions(9, 43e-3 / 9), model.k_h, model.preload)
+    expected = bc.modes(balls.tangent(np.zeros(5)), model.body.mass_matrix()).frequencies[3]
+    assert frequency == pytest.approx(expected, rel=5e-3)
+
+
+def slave_parameters():
+    """The BallCarriage5DOF defaults, as its model factory takes them."""
+    from guideway_fmu.components.ball_carriage import BallCarriage5DOF
+    return BallCarriage5DOF(instance_name="defaults", resources=None).parameter_values()
+
+
+def test_ball_carriage_without_equilibrium_at_the_start_discards_steps_saying_why(open_fmu):
+    # a lateral force alone drives the motion two rows of balls do not resist (Wu et al.'s model)
+    slave = open_fmu("BallCarriage5DOF", static_F_y=5.0)
+    assert_discarded(slave, 1e-5, "no ball resists")
+    assert_discarded(slave, 1e-5, "no ball resists")  # not fatal, still refused

@@ -16,4 +16,7 @@ BASE_UNITS = {  # unit name -> exponents of kg, m, s, rad
     "1/Pa": {"kg": -1, "m": 1, "s": 2},
     "1/m2": {"m": -2},
     "Hz": {"s": -1},
+    "N.m": {"kg": 1, "m": 2, "s": -2},
+    "kg.m2": {"kg": 1, "m": 2},
+    "rad/s": {"rad": 1, "s": -1},
 }

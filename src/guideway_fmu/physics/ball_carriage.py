@@ -202,9 +202,11 @@ class HertzBalls:
         def jacobian(z):
             return -basis.T @ self.tangent(basis @ z) @ basis
 
-        found = root(residual, np.zeros(basis.shape[1]), jac=jacobian, method="hybr",
-                     options={"xtol": 1e-13})
-        if not found.success or np.max(np.abs(residual(found.x))) > 1e-6 * scale:
+        rest = -jacobian(np.zeros(basis.shape[1]))
+        start = np.linalg.solve(rest, basis.T @ f)  # the linear answer
+        found = root(residual, start, jac=jacobian, method="hybr")
+        # judged by the residual: at round-off hybr may report slow progress on a solution
+        if np.max(np.abs(residual(found.x))) > 1e-9 * scale:
             raise ValueError(f"no static equilibrium under the load {f.tolist()} (F_y, F_z, M_x, "
                              f"M_y, M_z): more than the balls can carry")
         return basis @ found.x
@@ -214,8 +216,9 @@ class BallCarriageModel(ContinuousModel):
     """The carriage in time: states q, dq/dt (DOF order) and the balls' shift s [m] along x;
     inputs the generalized loads LOADS and the feed velocity u_feed [m/s] (ds/dt = u_feed / 2).
 
-    M d2q/dt2 = F + R(q, s) - C(q, s) dq/dt, with R the balls' restoring force and C = sum c g g^T
-    over the balls in contact (``ball_damping`` c [N s/m] per ball). With ``balls`` (HertzBalls
+    M d2q/dt2 = F + F_0 + R(q, s) - C(q, s) dq/dt, with F_0 the ``static_load`` (LOADS order),
+    R the balls' restoring force and C = sum c g g^T over the balls in contact (``ball_damping``
+    c [N s/m] per ball). With ``balls`` (HertzBalls
     parameters) the springs are nonlinear Hertz balls that may lose contact; with
     ``ball_stiffness`` (one value per ball of a row, used for both rows) they are linear.
     Outputs: q, dq/dt and each row's total normal ball load (with linear springs, its change
@@ -225,8 +228,9 @@ class BallCarriageModel(ContinuousModel):
     states = (*DOF, *(f"{n}_dot" for n in DOF), "ball_shift")
 
     def __init__(self, body: CarriageBody, per_row: int, pitch: float, *, k_h=None, preload=None,
-                 ball_stiffness=None, ball_damping: float = 0.0):
+                 ball_stiffness=None, ball_damping: float = 0.0, static_load=(0.0,) * 5):
         self.body, self.per_row, self.pitch = body, per_row, pitch
+        self.static_load = np.asarray(checks.finite("static_load", static_load), dtype=float)
         ball_positions(per_row, pitch)  # checks per_row and pitch
         if (ball_stiffness is None) == (k_h is None):
             raise ValueError("give either ball_stiffness or the Hertz constant and preload")
@@ -258,9 +262,13 @@ class BallCarriageModel(ContinuousModel):
     def state_scales(self):
         return (1e-6,) * 5 + (1e-3,) * 5 + (self.pitch,)
 
+    def load(self, inputs) -> np.ndarray:
+        """The generalized load F + F_0 of the inputs."""
+        return np.array([inputs[name] for name in LOADS], dtype=float) + self.static_load
+
     def initial_state(self, t, inputs):
-        """Static equilibrium under the inputs' loads, at rest, balls unshifted."""
-        load = np.array([inputs[name] for name in LOADS], dtype=float)
+        """Static equilibrium under the load at t, at rest, balls unshifted."""
+        load = self.load(inputs)
         if self.linear is not None:
             k = stiffness_matrix(self.balls(0.0)[0], self.linear)
             q = np.linalg.lstsq(k, load, rcond=None)[0]
@@ -276,8 +284,7 @@ class BallCarriageModel(ContinuousModel):
         in_contact = (loads(q) > 0.0) if self.linear is None else np.ones(g.shape[0], bool)
         restoring = -g.T @ (loads(q) - self.rest_loads())
         damping = self.damping * g.T @ (in_contact * (g @ rate))
-        load = np.array([inputs[name] for name in LOADS], dtype=float)
-        acceleration = (load + restoring - damping) / self.mass
+        acceleration = (self.load(inputs) + restoring - damping) / self.mass
         return (*rate, *acceleration, 0.5 * inputs["u_feed"])
 
     def outputs(self, t, state, inputs, wanted=None):
@@ -294,3 +301,25 @@ class BallCarriageModel(ContinuousModel):
         g, _, stiffness = self.balls(0.0)
         k = stiffness_matrix(g, stiffness(np.zeros(5)))
         return float(modes(k, np.diag(self.mass)).frequencies.max())
+
+
+def from_parameters(mass, inertia_x, inertia_y, inertia_z, contact_angle, d, e, balls_per_row,
+                    pitch, ball_diameter, conformity, preload, ball_stiffness, ball_damping,
+                    static_F_y, static_F_z, static_M_x, static_M_y, static_M_z) -> BallCarriageModel:
+    """The validated model of the BallCarriage5DOF FMU's parameters (fmus/README.md):
+    ``ball_stiffness`` a space-separated list of per-row values [N/m], or empty for the Hertz
+    balls of ``ball_diameter``, ``conformity`` and ``preload``; the static_* loads are added to
+    the load inputs."""
+    body = CarriageBody(mass, (inertia_x, inertia_y, inertia_z), contact_angle, d, e)
+    static = (static_F_y, static_F_z, static_M_x, static_M_y, static_M_z)
+    if str(ball_stiffness).strip():
+        try:
+            values = [float(v) for v in str(ball_stiffness).split()]
+        except ValueError:
+            raise ValueError(f"ball_stiffness must be numbers separated by spaces, got "
+                             f"{ball_stiffness!r}") from None
+        return BallCarriageModel(body, balls_per_row, pitch, ball_stiffness=values,
+                                 ball_damping=ball_damping, static_load=static)
+    k_h = hertz_point.ball_constant(hertz_point.BallGroove(ball_diameter, conformity))
+    return BallCarriageModel(body, balls_per_row, pitch, k_h=k_h, preload=preload,
+                             ball_damping=ball_damping, static_load=static)
