@@ -19,6 +19,11 @@ GRAVITY = 9.80665  # m/s^2
 MASS = 0.313  # kg, Table 1
 
 
+def scenarios() -> dict:
+    """Every shipped scenario of this paper by name."""
+    return {"wu2012_ball_carriage_moment": scenario()}
+
+
 def scenario():
     b = Builder("wu2012_ball_carriage_moment",
                 "Wu et al. (2012): the 5-DOF ball carriage under M_y = 2.90 N m, M_z = 0.3 N m and its weight, "
@@ -38,4 +43,5 @@ def scenario():
 
 
 if __name__ == "__main__":
-    print(dump(scenario(), FOLDER / "wu2012_ball_carriage_moment.toml", HEADER))
+    for name, system in scenarios().items():
+        print(dump(system, FOLDER / f"{name}.toml", HEADER))

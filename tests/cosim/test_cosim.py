@@ -118,13 +118,17 @@ def test_fmu_dir_override_takes_fmus_by_name(tmp_path, fmu_dir):
     assert s.components["Contact"].fmu == fmu_dir / "ContactDryHertz.fmu"
 
 
-def _generator():
+def _generators():
+    """The scenario generators of orchestration/ (make_*_scenarios.py), as modules."""
     import importlib.util
     root = Path(__file__).parents[2] / "orchestration"
-    spec = importlib.util.spec_from_file_location("gen", root / "make_soleimanian2020_scenarios.py")
-    gen = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(gen)
-    return gen
+    found = []
+    for path in sorted(root.glob("make_*_scenarios.py")):
+        spec = importlib.util.spec_from_file_location(path.stem, path)
+        gen = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(gen)
+        found.append((path, gen))
+    return found
 
 
 def _described(s: system.System) -> tuple:
@@ -134,13 +138,14 @@ def _described(s: system.System) -> tuple:
 
 
 def test_every_shipped_scenario_is_what_its_generator_writes(tmp_path):
-    gen = _generator()
-    built = gen.scenarios()
-    assert sorted(built) == scenarios.names()
-    for name, s in built.items():
-        dump_path = system.dump(s, tmp_path / f"{name}.toml", gen.HEADER)
-        assert dump_path.read_text() == scenarios.find(name).read_text(), (
-            "run python orchestration/make_soleimanian2020_scenarios.py")
+    written = []
+    for path, gen in _generators():
+        for name, s in gen.scenarios().items():
+            dump_path = system.dump(s, tmp_path / f"{name}.toml", gen.HEADER)
+            assert dump_path.read_text() == scenarios.find(name).read_text(), (
+                f"run python orchestration/{path.name}")
+            written.append(name)
+    assert sorted(written) == scenarios.names()
 
 
 @pytest.mark.parametrize("name", scenarios.names())
