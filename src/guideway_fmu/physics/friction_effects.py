@@ -32,6 +32,8 @@ distance by dD/dt = |u|. The FMUs advance them along the position input instead,
 """
 from __future__ import annotations
 
+from abc import abstractmethod
+
 import numpy as np
 
 from . import checks
@@ -159,8 +161,9 @@ class EffectModel(ContinuousModel):
         """2 N (F_upper + F_lower) [N]: the load the coefficients multiply."""
         return 2.0 * self.rollers * (inputs["F_upper"] + inputs["F_lower"])
 
+    @abstractmethod
     def force(self, state, inputs) -> float:
-        raise NotImplementedError
+        """F_friction [N] at the state and inputs."""
 
     def outputs(self, t, state, inputs, wanted=None):
         return {"F_friction": float(self.force(state, inputs))}
