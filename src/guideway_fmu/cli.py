@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes``."""
+"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit``."""
 from __future__ import annotations
 
 import argparse
@@ -116,6 +116,49 @@ def _ehl(args) -> str:
     return ea.format_cycle(instants) + "\n" + "\n".join(str(f) for f in files)
 
 
+def _feed_unit_args(sub) -> None:
+    from .analysis.feed_unit import SWEEPS
+    p = sub.add_parser("feed-unit", help="errors and stiffness of a four-slider ball-guide feed unit")
+    p.add_argument("feed_unit", type=Path, help="feed-unit file (docs/feed-unit.md)")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument("--sweep", choices=list(SWEEPS), default=None,
+                   help="vary the load (fraction of the file's), the load point or the contact angle")
+    p.add_argument("--range", nargs=2, type=float, metavar=("LOW", "HIGH"), default=None,
+                   help="swept range (default: load 0 to 1, load point across the sliders' span, "
+                        "contact angle 30 to 65 deg)")
+    p.add_argument("--points", type=int, default=21, help="swept values (default 21)")
+    p.add_argument("--plot", type=Path, default=None, help="PNG of the sweep")
+
+
+def _feed_unit(args) -> str:
+    from .analysis import feed_unit as fa
+    case = fa.read_feed_unit(args.feed_unit)
+    if args.sweep is None:
+        if args.range is not None or args.plot is not None:
+            raise ValueError("--range and --plot need --sweep")
+        result = fa.analyse(case)
+        return json.dumps(result, indent=2) if args.json else fa.format_result(result)
+    try:
+        values = fa.sweep_values(case, args.sweep, *(args.range or (None, None)), args.points)
+    except ValueError as error:
+        raise _in_option_terms(error, ("points", "sweep")) from None
+    result = fa.sweep(case, args.sweep, values)
+    if args.plot is not None:
+        from .analysis.feed_unit_plots import plot_sweep
+        result["plot"] = str(plot_sweep(result, args.plot))
+    if args.json:
+        return json.dumps(result, indent=2)
+    keys = ("delta_y", "delta_z", "epsilon_x", "epsilon_y", "epsilon_z")
+    lines = [f"{args.sweep + ' [' + result['unit'] + ']':>18s} "
+             + " ".join(f"{k + ' ' + m[0]:>13s}" for k in keys for m in fa.MODELS)]
+    for i, value in enumerate(values):
+        lines.append(f"{value:18.6g} " + " ".join(f"{result[m][k][i] * 1e6:13.4f}"
+                                                 for k in keys for m in fa.MODELS))
+    lines.append("errors in um and urad; a: contact angle changes, c: constant angle"
+                 + (f"\nplot: {result['plot']}" if args.plot else ""))
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="guideway-fmu", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -147,6 +190,7 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("modes", help="natural frequencies and mode shapes of a ball-guide carriage")
     p.add_argument("carriage", type=Path, help="carriage file (docs/ball-guides.md)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
+    _feed_unit_args(sub)
     args = parser.parse_args(argv)
     try:
         if args.command == "build":
@@ -185,6 +229,8 @@ def main(argv: list[str] | None = None) -> int:
             print(json.dumps(rig_facts(args.u), indent=2))
         elif args.command in ("ehl", "ehl-cycle"):
             print(_ehl(args))
+        elif args.command == "feed-unit":
+            print(_feed_unit(args))
     except (ValueError, OSError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
         # EHLConvergenceError, files that cannot be read or written
         print(f"guideway-fmu {args.command}: error: {exc}", file=sys.stderr)

@@ -203,6 +203,15 @@ CONTRACT = {
                          "psi": ("output", "rad"), "v_dot": ("output", "m/s"),
                          "theta_dot": ("output", "rad/s"), "row_load_1": ("output", "N"),
                          "row_load_2": ("output", "N")},
+    "FeedUnitErrors": {"F_x": ("input", "N"), "F_y": ("input", "N"), "F_z": ("input", "N"),
+                       "point_x": ("input", "m"), "point_y": ("input", "m"),
+                       "point_z": ("input", "m"), "x_feed": ("input", "m"),
+                       "delta_y": ("output", "m"), "delta_z": ("output", "m"),
+                       "epsilon_x": ("output", "rad"), "epsilon_y": ("output", "rad"),
+                       "epsilon_z": ("output", "rad"), "tool_d_y": ("output", "m"),
+                       "tool_d_z": ("output", "m"), "max_ball_load": ("output", "N")},
+    "MillingForce": {"u_feed": ("input", "m/s"), "F_x": ("output", "N"), "F_y": ("output", "N"),
+                     "F_z": ("output", "N")},
 }
 
 
@@ -476,6 +485,8 @@ SIMULATIONS = {  # name -> start values of a short simulate_fmu run
     "ContactEHL": {"y": 1e-6, "u": 0.29},
     "FrictionCoulomb": {"F_upper": 115.0, "F_lower": 115.0, "u": 0.1},
     "BallCarriage5DOF": {"static_M_y": 1.45, "u_feed": 0.3},
+    "FeedUnitErrors": {"F_z": -2000.0, "point_x": 0.05, "point_z": 0.1},
+    "MillingForce": {"u_feed": 0.1},
 }
 
 
@@ -499,7 +510,8 @@ def test_fmus_instantiate_again_after_a_previous_instance_was_freed(fmu_dir):
     ("ContactEHL", {"film_model": "extrapolated", "u": 0.29, "y": 1e-6, "y_dot": 1e-3}, 1e-5),
     ("FeedKinematics", {}, 1e-3),
     ("BallCarriage5DOF", {"static_M_y": 2.9, "F_z": -5.0, "u_feed": 0.3}, 1e-5),
-], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics", "BallCarriage5DOF"])
+    ("MillingForce", {"u_feed": 0.1, "start_angle": 0.1}, 1e-4),
+], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics", "BallCarriage5DOF", "MillingForce"])
 def test_restored_fmu_state_replays_identically(open_fmu, name, start, h):
     slave = open_fmu(name, **start).step(h, n=3)
     state, time = slave.fmu.getFMUstate(), slave.time
@@ -534,6 +546,9 @@ def case(*values, id):
          id="VerticalDynamics-law_approach_upper-nan"),
     case("BallCarriage5DOF", {"static_M_y": 1.0}, {"M_z": NAN}, "M_z",
          id="BallCarriage5DOF-M_z-nan"),
+    case("FeedUnitErrors", {"F_z": -1000.0}, {"point_y": float("inf")}, "point_y",
+         id="FeedUnitErrors-point_y-inf"),
+    case("MillingForce", {"u_feed": 0.1}, {"u_feed": NAN}, "u_feed", id="MillingForce-u_feed-nan"),
 ])
 def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, start, bad,
                                                               name_in_message):
@@ -561,6 +576,12 @@ def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, st
          "ball_stiffness", id="BallCarriage5DOF-ball_stiffness"),
     case("FeedKinematics", {"profile": "table"}, {"profile": "biharmonic"}, "table_file",
          id="FeedKinematics-table_file-empty"),
+    case("FeedUnitErrors", {"balls_per_row": 60}, {"balls_per_row": 12}, "balls_per_row",
+         id="FeedUnitErrors-balls_per_row-overlap"),
+    case("FeedUnitErrors", {"poisson_ratio": 0.6}, {"poisson_ratio": 0.3}, "poisson_ratio",
+         id="FeedUnitErrors-poisson_ratio"),
+    case("MillingForce", {"exit_angle": 5.0}, {"exit_angle": math.pi}, "exit_angle",
+         id="MillingForce-exit_angle"),
     case("FeedKinematics", {"profile": "table", "table_file": "/nonexistent_dir/feed.csv"},
          {"profile": "biharmonic"}, "table_file", id="FeedKinematics-table_file-no-such-file"),
 ])
@@ -736,3 +757,44 @@ def test_ball_carriage_without_equilibrium_at_the_start_discards_steps_saying_wh
     slave = open_fmu("BallCarriage5DOF", static_F_y=5.0)
     assert_discarded(slave, 1e-5, "no ball resists")
     assert_discarded(slave, 1e-5, "no ball resists")  # not fatal, still refused
+
+
+def test_feed_unit_fmu_under_a_central_vertical_load_hand_calculation(open_fmu):
+    # 16 n balls at 45 deg share a small central load F equally: each ball's approach grows by
+    # w sin 45 for the upper rows and shrinks by it for the lower ones, so to first order
+    # F = 16 n k0 sin^2(45) w with k0 = 1.5 Q0 / delta_p the rest stiffness of one ball, plus
+    # the turning of the preloaded lines (Q0 / L0 cos^2 45 per ball) with the angle change.
+    # Ball: 3/16 in, f = 0.52, steel (2 / E' = 2 (1 - nu^2) / E); delta_p from Q0 = 20 N.
+    from scipy.special import ellipe, ellipk
+    from scipy.optimize import brentq
+    d, f, q0, n = 4.7625e-3, 0.52, 20.0, 12
+    curvature_sum = (4 - 1 / f) / d
+    difference = 1 / (4 * f - 1)
+    kappa = brentq(lambda k: ((k**2 + 1) * ellipe(1 - k**-2) - 2 * ellipk(1 - k**-2))
+                   / ((k**2 - 1) * ellipe(1 - k**-2)) - difference, 1.0001, 100.0)
+    e_red = 206e9 / (1 - 0.3**2)
+    m = 1 - kappa**-2
+    one = ellipk(m) * (9 / (2 * ellipe(m) / curvature_sum) * (q0 / (math.pi * kappa * e_red)) ** 2) ** (1 / 3)
+    rest = 2 * one  # two equal contacts in series carry the same load
+    k0 = 1.5 * q0 / rest
+    turn = q0 / ((2 * f - 1) * d + rest)
+    force = 20.0
+    for change, extra in ((False, 0.0), (True, turn)):
+        slave = open_fmu("FeedUnitErrors", F_z=-force, angle_change=change).step(1e-3)
+        w = force / (16 * n * (k0 * 0.5 + extra * 0.5))
+        assert slave.outputs()["delta_z"] == pytest.approx(-w, rel=1e-3)
+        assert abs(slave.outputs()["epsilon_y"]) < 1e-15
+
+
+def test_milling_force_fmu_follows_the_spindle_hand_calculation(open_fmu):
+    # one tooth at phi = pi/2 at t = 0: the table takes (F_r, -F_t, -F_a); a quarter turn later
+    # (phi = pi, the exit of a slot) h = 0 and only the edge forces act, F_t along -x on the tool
+    slave = open_fmu("MillingForce", u_feed=0.1, teeth=1, start_angle=math.pi / 2)
+    c = 0.1 / 200.0
+    out = slave.outputs()
+    assert out["F_x"] == pytest.approx(170e6 * 2e-3 * c + 31e3 * 2e-3, rel=1e-12)
+    assert out["F_y"] == pytest.approx(-(800e6 * 2e-3 * c + 28e3 * 2e-3), rel=1e-12)
+    slave.step(1.0 / 800.0 - 1e-12)
+    out = slave.outputs()
+    assert out["F_x"] == pytest.approx(-28e3 * 2e-3, rel=1e-5)
+    assert out["F_z"] == pytest.approx(-2e3 * 2e-3, rel=1e-5)

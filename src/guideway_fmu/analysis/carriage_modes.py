@@ -8,7 +8,6 @@ static equilibrium under ``[load]``, then each ball's tangent stiffness (physics
 """
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -16,6 +15,7 @@ import numpy as np
 
 from ..physics import ball_carriage as bc
 from ..physics import hertz_point
+from . import input_file
 
 LOAD_KEYS = ("force_y", "force_z", "moment_x", "moment_y", "moment_z")  # order of bc.LOADS
 CARRIAGE_KEYS = ("mass", "inertia", "contact_angle_deg", "d", "e")
@@ -39,62 +39,34 @@ class CarriageCase:
         return bc.ball_positions(self.per_row, self.pitch)
 
 
-def _table(path, data, name, required=True) -> dict:
-    table = data.get(name, {} if not required else None)
-    if not isinstance(table, dict):
-        raise ValueError(f"{path}: " + (f"table [{name}] is missing" if table is None
-                                        else f"[{name}] must be a table"))
-    return table
-
-
-def _number(path, table_name, table, key, check=None):
-    value = table.get(key)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
-        raise ValueError(f"{path}: [{table_name}] key {key!r}: "
-                         + ("missing" if value is None else f"must be a number, got {value!r}"))
-    if check is not None and not check(value):
-        raise ValueError(f"{path}: [{table_name}] key {key!r}: must be > 0, got {value!r}")
-    return float(value)
-
-
 def read_carriage(path) -> CarriageCase:
     """Read and check a carriage file; ValueError or FileNotFoundError naming the file, table
     and key."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise FileNotFoundError(f"{path}: no such carriage file") from None
-    except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{path}: not valid TOML: {error}") from None
-    carriage, balls = _table(path, data, "carriage"), _table(path, data, "balls")
-    load_table = _table(path, data, "load", required=False)
-    positive = (lambda v: v > 0)
-    unknown = [f"[{name}] key {key!r}" for name, table, keys in (
-        ("carriage", carriage, CARRIAGE_KEYS),
-        ("balls", balls, ("per_row", "pitch", "stiffness", *HERTZ_KEYS)),
-        ("load", load_table, LOAD_KEYS)) for key in table if key not in keys]
-    if unknown:
-        raise ValueError(f"{path}: unknown {', '.join(unknown)}")
+    data = input_file.read(path, "carriage")
+    carriage, balls = (input_file.table(path, data, "carriage"),
+                       input_file.table(path, data, "balls"))
+    load_table = input_file.table(path, data, "load", required=False)
+    input_file.refuse_unknown(path, {
+        "carriage": (carriage, CARRIAGE_KEYS),
+        "balls": (balls, ("per_row", "pitch", "stiffness", *HERTZ_KEYS)),
+        "load": (load_table, LOAD_KEYS)})
     inertia = carriage.get("inertia")
     if (not isinstance(inertia, list) or len(inertia) != 3
             or not all(isinstance(j, (int, float)) and j > 0 for j in inertia)):
         raise ValueError(f"{path}: [carriage] key 'inertia': must be [J_x, J_y, J_z] > 0 in "
                          f"kg m^2, got {inertia!r}")
-    angle = _number(path, "carriage", carriage, "contact_angle_deg")
+    angle = input_file.number(path, "carriage", carriage, "contact_angle_deg")
     if not 0.0 < angle < 90.0:
         raise ValueError(f"{path}: [carriage] key 'contact_angle_deg': must lie in (0, 90), "
                          f"got {angle!r}")
-    body = bc.CarriageBody(_number(path, "carriage", carriage, "mass", positive),
+    body = bc.CarriageBody(input_file.number(path, "carriage", carriage, "mass", True),
                            tuple(float(j) for j in inertia), np.radians(angle),
-                           _number(path, "carriage", carriage, "d"),
-                           _number(path, "carriage", carriage, "e"))
-    per_row = balls.get("per_row")
-    if isinstance(per_row, bool) or not isinstance(per_row, int) or per_row < 1:
-        raise ValueError(f"{path}: [balls] key 'per_row': must be a whole number >= 1, "
-                         f"got {per_row!r}")
-    pitch = _number(path, "balls", balls, "pitch", positive)
-    load = np.array([_number(path, "load", load_table, k) if k in load_table else 0.0
+                           input_file.number(path, "carriage", carriage, "d"),
+                           input_file.number(path, "carriage", carriage, "e"))
+    per_row = input_file.whole(path, "balls", balls, "per_row")
+    pitch = input_file.number(path, "balls", balls, "pitch", True)
+    load = np.array([input_file.number(path, "load", load_table, k) if k in load_table else 0.0
                      for k in LOAD_KEYS])
     hertz = [k for k in HERTZ_KEYS if k in balls]
     if "stiffness" in balls:
@@ -115,14 +87,14 @@ def read_carriage(path) -> CarriageCase:
     if missing:
         raise ValueError(f"{path}: [balls]: give 'stiffness' or all of {', '.join(HERTZ_KEYS)}; "
                          f"missing {', '.join(missing)}")
-    diameter = _number(path, "balls", balls, "diameter", positive)
-    conformity = _number(path, "balls", balls, "conformity")
+    diameter = input_file.number(path, "balls", balls, "diameter", True)
+    conformity = input_file.number(path, "balls", balls, "conformity")
     try:
         k_h = hertz_point.ball_constant(hertz_point.BallGroove(diameter, conformity))
     except ValueError as error:
         raise ValueError(f"{path}: [balls] {error}") from None
     return CarriageCase(path, body, per_row, pitch, None, k_h,
-                        _number(path, "balls", balls, "preload", positive), load)
+                        input_file.number(path, "balls", balls, "preload", True), load)
 
 
 def analyse(case: CarriageCase) -> dict:
