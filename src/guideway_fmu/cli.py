@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit``."""
+"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball``."""
 from __future__ import annotations
 
 import argparse
@@ -191,6 +191,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("carriage", type=Path, help="carriage file (docs/ball-guides.md)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     _feed_unit_args(sub)
+    p = sub.add_parser("ball-to-ball", help="ball-to-ball contact force and friction of two balls")
+    p.add_argument("case", type=Path, help="case file (docs/ball-to-ball.md)")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
     args = parser.parse_args(argv)
     try:
         if args.command == "build":
@@ -231,6 +234,11 @@ def main(argv: list[str] | None = None) -> int:
             print(_ehl(args))
         elif args.command == "feed-unit":
             print(_feed_unit(args))
+        elif args.command == "ball-to-ball":
+            from .analysis import ball_to_ball
+            case = ball_to_ball.read_case(args.case)
+            result = ball_to_ball.analyse(case, args.case)
+            print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result))
     except (ValueError, OSError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
         # EHLConvergenceError, files that cannot be read or written
         print(f"guideway-fmu {args.command}: error: {exc}", file=sys.stderr)

@@ -1,0 +1,83 @@
+"""Ball-to-ball contact of two balls in a four-point contact linear ball bearing from a case
+file (``guideway-fmu ball-to-ball CASE.toml``), by the analytical and the low-order numerical
+model of Lin, Duan and Okwudire (2019); physics/ball_to_ball.py. The format is in
+docs/ball-to-ball.md.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..physics import ball_to_ball as bb
+from . import input_file
+
+KEYS = {"ball": ("radius", "conformity"), "material": ("E", "nu", "friction"),
+        "contact": ("nominal_angle_deg", *bb.CONTACTS), "load": ("normal", "side_ratio"),
+        "motion": ("velocity",)}
+BALLS = 2
+
+
+def _deviation(path, table: dict, key: str) -> list[float]:
+    """One contact's deviation [deg] for each ball: a number for both, or a list of two."""
+    value = table.get(key, 0.0)
+    values = value if isinstance(value, list) else [value] * BALLS
+    if (len(values) != BALLS or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                         and np.isfinite(v) for v in values)):
+        raise ValueError(f"{path}: [contact] key {key!r}: must be a deviation in degrees or a "
+                         f"list of {BALLS} (ball 1 behind, ball 2 in front), got {value!r}")
+    return [float(v) for v in values]
+
+
+def read_case(path) -> bb.TwoBallCase:
+    """Read and check a case file; ValueError or FileNotFoundError naming file, table and key."""
+    path = Path(path)
+    data = input_file.read(path, "ball-to-ball case")
+    tables = {name: input_file.table(path, data, name) for name in KEYS}
+    input_file.refuse_unknown(path, {name: (tables[name], keys) for name, keys in KEYS.items()})
+    stray = [name for name in data if name not in KEYS]
+    if stray:
+        raise ValueError(f"{path}: unknown table(s) {', '.join(f'[{n}]' for n in stray)}")
+
+    def num(table, key, positive=True):
+        return input_file.number(path, table, tables[table], key, positive)
+
+    columns = [_deviation(path, tables["contact"], key) for key in bb.CONTACTS]
+    deviations = tuple(tuple(np.radians([c[ball] for c in columns])) for ball in range(BALLS))
+    try:
+        bearing = bb.Bearing(num("ball", "radius"), num("ball", "conformity"),
+                             num("material", "E"), num("material", "nu", False),
+                             num("material", "friction"),
+                             np.radians(num("contact", "nominal_angle_deg")),
+                             num("motion", "velocity"))
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from None
+    return bb.TwoBallCase(bearing, deviations, num("load", "normal"),
+                          num("load", "side_ratio", False))
+
+
+def analyse(case: bb.TwoBallCase, source="case") -> dict:
+    """``{"analytical": {...}, "numerical": {...}}`` (SI units; epsilon as fractions); errors
+    name ``source``."""
+    try:
+        return {"analytical": bb.analytical(case), "numerical": bb.numerical(case),
+                "hertz": {"psi": case.bearing.psi, "aspect_b_over_a": case.bearing.aspect}}
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+
+
+def format_result(result: dict) -> str:
+    """A readable summary of :func:`analyse`'s result."""
+    lines = [f"{'':28s} {'analytical':>12s} {'numerical':>12s}"]
+    a, n = result["analytical"], result["numerical"]
+    for i in range(BALLS):
+        lines.append(f"{f'epsilon ball {i + 1} [%]':28s} {100 * a['epsilon'][i]:12.4f} "
+                     f"{100 * n['epsilon'][i]:12.4f}")
+    lines.append(f"{'contact force [N]':28s} {a['contact_force']:12.4f} {n['contact_force']:12.4f}")
+    lines.append(f"{'ball-to-ball loss [mW]':28s} {1e3 * a['friction_loss']:12.4f} "
+                 f"{1e3 * n['friction_loss']:12.4f}")
+    lines.append(f"{'groove loss [mW]':28s} {'':12s} {1e3 * n['groove_loss']:12.4f}")
+    lines.append(f"k_f = {a['k_f']:.4f} (from the friction map), Psi = "
+                 f"{result['hertz']['psi']:.4e} (m^2/N)^(1/3), b/a = "
+                 f"{result['hertz']['aspect_b_over_a']:.4f}")
+    return "\n".join(lines)

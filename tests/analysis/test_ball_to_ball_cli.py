@@ -1,0 +1,55 @@
+"""``guideway-fmu ball-to-ball``: the case file, its errors and the two shipped cases."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from guideway_fmu.cli import main
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "orchestration" / "ball_guides"
+CASE_A = EXAMPLES / "lin2019_case_a.toml"
+
+
+def test_case_a_json_has_both_models_with_the_published_contact_forces(capsys):
+    assert main(["ball-to-ball", str(CASE_A), "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    for model, published in (("analytical", 3.74), ("numerical", 4.01)):
+        assert len(result[model]["epsilon"]) == 2
+        assert result[model]["contact_force"] == pytest.approx(published, rel=0.03)
+        assert result[model]["friction_loss"] > 0
+
+
+def test_case_b_text_output_shows_no_contact(capsys):
+    assert main(["ball-to-ball", str(EXAMPLES / "lin2019_case_b.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "contact force [N]" in out and "0.0000       0.0000" in out
+
+
+def test_per_ball_deviations_are_read_ball_by_ball(tmp_path, capsys):
+    # ball 2 alone has the bottom deviation: ball 1 rolls at v/2, ball 2 does not
+    text = CASE_A.read_text().replace("BL = -2.0", "BL = [0.0, -2.0]").replace(
+        "BR = 2.0 ", "BR = [0.0, 2.0]")
+    path = tmp_path / "case.toml"
+    path.write_text(text)
+    assert main(["ball-to-ball", str(path), "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["numerical"]["epsilon"][0] == pytest.approx(0.0, abs=1e-9)
+    assert result["numerical"]["epsilon"][1] != pytest.approx(0.0, abs=1e-4)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda t: t.replace("[motion]", "[moving]"), "table [motion] is missing"),
+    (lambda t: t.replace("conformity = 0.56", "conformity = 0.4"), "conformity"),
+    (lambda t: t.replace("BL = -2.0", "BL = [1.0, 2.0, 3.0]"), "[contact] key 'BL'"),
+    (lambda t: t.replace("side_ratio = -0.6", "side_ratio = -1.5"), "two-point contact"),
+    (lambda t: t.replace("normal = 100.0", "normal = -5.0"), "[load] key 'normal'"),
+    (lambda t: t.replace("[ball]", "[ball]\nmass = 1"), "unknown [ball] key 'mass'"),
+])
+def test_bad_case_file_is_refused_naming_file_and_key(tmp_path, capsys, edit, message):
+    path = tmp_path / "case.toml"
+    path.write_text(edit(CASE_A.read_text()))
+    assert main(["ball-to-ball", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert str(path) in err and message in err, err
