@@ -180,12 +180,7 @@ def contact_loads(bearing: Bearing, angles, side: float, normal: float) -> np.nd
         on_groove = (loads[top, None] * n[top]).sum(axis=0) + (side, -normal)
         return np.concatenate([on_ball, on_groove]) / normal
 
-    c, s = np.cos(bearing.nominal_angle), np.sin(bearing.nominal_angle)
-    upper, lower = (normal / c - side / s) / 2, (normal / c + side / s) / 2  # F_U, F_D nominal
-    if min(upper, lower) <= 0:
-        raise ValueError(f"side_ratio {side / normal:g} leaves the ball in two-point contact "
-                         f"(|N_x / N_y| must stay below tan(beta_0) = {s / c:.3g})")
-    reach = (np.array([upper, lower]) / k) ** (2 / 3)
+    reach = (np.array(diagonal_loads(bearing, side, normal)) / k) ** (2 / 3)  # the start
     groove = np.linalg.solve(n[[0, 1]] / 2, reach)  # ball halfway: BL-TR and BR-TL equal
     found = root(residual, np.concatenate([groove / 2, groove]), method="hybr", tol=1e-14)
     loads = k * np.maximum(approaches(found.x), 0.0) ** 1.5
