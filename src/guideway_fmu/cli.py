@@ -148,15 +148,7 @@ def _feed_unit(args) -> str:
         result["plot"] = str(plot_sweep(result, args.plot))
     if args.json:
         return json.dumps(result, indent=2)
-    keys = ("delta_y", "delta_z", "epsilon_x", "epsilon_y", "epsilon_z")
-    lines = [f"{args.sweep + ' [' + result['unit'] + ']':>18s} "
-             + " ".join(f"{k + ' ' + m[0]:>13s}" for k in keys for m in fa.MODELS)]
-    for i, value in enumerate(values):
-        lines.append(f"{value:18.6g} " + " ".join(f"{result[m][k][i] * 1e6:13.4f}"
-                                                 for k in keys for m in fa.MODELS))
-    lines.append("errors in um and urad; a: contact angle changes, c: constant angle"
-                 + (f"\nplot: {result['plot']}" if args.plot else ""))
-    return "\n".join(lines)
+    return fa.format_sweep(result) + (f"\nplot: {result['plot']}" if args.plot else "")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -33,11 +33,7 @@ def read_case(path) -> bb.TwoBallCase:
     """Read and check a case file; ValueError or FileNotFoundError naming file, table and key."""
     path = Path(path)
     data = input_file.read(path, "ball-to-ball case")
-    tables = {name: input_file.table(path, data, name) for name in KEYS}
-    input_file.refuse_unknown(path, {name: (tables[name], keys) for name, keys in KEYS.items()})
-    stray = [name for name in data if name not in KEYS]
-    if stray:
-        raise ValueError(f"{path}: unknown table(s) {', '.join(f'[{n}]' for n in stray)}")
+    tables = input_file.tables(path, data, KEYS)
 
     def num(table, key, positive=True):
         return input_file.number(path, table, tables[table], key, positive)

@@ -52,13 +52,7 @@ def read_feed_unit(path) -> FeedUnitCase:
     and key."""
     path = Path(path)
     data = input_file.read(path, "feed-unit")
-    tables = {name: input_file.table(path, data, name, required=name not in ("material", "load"))
-              for name in KEYS}
-    input_file.refuse_unknown(path, {name: (tables[name], keys) for name, keys in KEYS.items()})
-    stray = [name for name in data if name not in KEYS]
-    if stray:
-        raise ValueError(f"{path}: unknown table(s) {', '.join(f'[{n}]' for n in stray)}; "
-                         f"known: {', '.join(f'[{n}]' for n in KEYS)}")
+    tables = input_file.tables(path, data, KEYS, optional=("material", "load"))
 
     def num(table, key, positive=True, default=None):
         return input_file.number(path, table, tables[table], key, positive, default)
@@ -213,4 +207,15 @@ def format_result(result: dict) -> str:
     if a["above_static_pressure_limit"] or c["above_static_pressure_limit"]:
         lines.append(f"warning: a contact pressure exceeds {fu.PRESSURE_LIMIT / 1e9:.1f} GPa, "
                      f"the static limit behind ISO 76: the load is beyond the guide's rating")
+    return "\n".join(lines)
+
+
+def format_sweep(result: dict) -> str:
+    """A readable table of :func:`sweep`'s result: the five errors of both models per value."""
+    lines = [f"{result['sweep'] + ' [' + result['unit'] + ']':>18s} "
+             + " ".join(f"{key + ' ' + model[0]:>13s}" for key in fu.ERRORS for model in MODELS)]
+    for i, value in enumerate(result["values"]):
+        lines.append(f"{value:18.6g} " + " ".join(f"{result[model][key][i] * 1e6:13.4f}"
+                                                 for key in fu.ERRORS for model in MODELS))
+    lines.append("errors in um and urad; a: contact angle changes, c: constant angle")
     return "\n".join(lines)

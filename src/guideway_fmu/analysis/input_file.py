@@ -28,6 +28,18 @@ def table(path, data: dict, name: str, required: bool = True) -> dict:
     return found
 
 
+def tables(path, data: dict, keys: dict[str, tuple[str, ...]], optional=()) -> dict[str, dict]:
+    """Every table of ``keys`` (name -> known keys; those in ``optional`` may be absent), with
+    unknown tables and keys refused."""
+    found = {name: table(path, data, name, required=name not in optional) for name in keys}
+    stray = [name for name in data if name not in keys]
+    if stray:
+        raise ValueError(f"{path}: unknown table(s) {', '.join(f'[{n}]' for n in stray)}; "
+                         f"known: {', '.join(f'[{n}]' for n in keys)}")
+    refuse_unknown(path, {name: (found[name], known) for name, known in keys.items()})
+    return found
+
+
 def refuse_unknown(path, tables: dict[str, tuple[dict, tuple[str, ...]]]) -> None:
     """ValueError listing every key not among the known ones: ``{name: (table, known keys)}``."""
     unknown = [f"[{name}] key {key!r}" for name, (found, keys) in tables.items()

@@ -31,7 +31,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import root
-from scipy.special import ellipe
 
 from . import checks, hertz_point
 
@@ -235,12 +234,14 @@ def _equilibrium(bearing: Bearing, ball: Ball, f, m) -> np.ndarray:
                      np.dot([s[0], -s[1], -s[2], s[3]], f) + np.dot([c[0], c[1], -c[2], -c[3]], moment)])
 
 
-def ball_to_ball_friction(bearing: Bearing, w_rear, w_front, force: float):
-    """Friction (f_x, f_y) [N] on the rear ball and its sliding speed [m/s] at the contact of
-    the rear ball (omega_x, omega_y) with the front one under the normal force [N] (eqs. 5-6)."""
+def contact_friction(bearing: Bearing, w_rear, w_front, force: float):
+    """Friction (f_x, f_y) [N] on the rear ball at its contact with the front one under the
+    normal force [N] (eqs. 5, 6) and the loss mu F |Delta v| [W] there (eq. 7), from the two
+    balls' (omega_x, omega_y) [rad/s]."""
     slide = bearing.radius * np.array([w_rear[1] + w_front[1], -(w_rear[0] + w_front[0])])
     speed = float(np.hypot(*slide))
-    return (-slide / speed * bearing.friction * force if speed > 0 else np.zeros(2)), speed
+    friction = -slide / speed * bearing.friction * force if speed > 0 else np.zeros(2)
+    return friction, bearing.friction * force * speed
 
 
 @dataclass(frozen=True)
@@ -273,7 +274,7 @@ def solve_group(bearing: Bearing, balls: list[Ball], start: GroupMotion | None =
     def residual(z):
         v_b, spins, forces = unpack(z)
         out = []
-        frictions = [ball_to_ball_friction(bearing, spins[j], spins[j + 1], forces[j])[0]
+        frictions = [contact_friction(bearing, spins[j], spins[j + 1], forces[j])[0]
                      for j in range(n - 1)]
         for j, ball in enumerate(balls):
             f, m, _ = groove_friction(bearing, ball, v_b, *spins[j])
@@ -304,10 +305,8 @@ def solve_group(bearing: Bearing, balls: list[Ball], start: GroupMotion | None =
     v_b, spins, forces = unpack(found.x)
     groove_loss = sum(groove_friction(bearing, b, v_b, *spins[j])[2].sum()
                       for j, b in enumerate(balls))
-    contact_loss = 0.0
-    for j in range(n - 1):
-        _, speed = ball_to_ball_friction(bearing, spins[j], spins[j + 1], forces[j])
-        contact_loss += bearing.friction * forces[j] * speed
+    contact_loss = sum(contact_friction(bearing, spins[j], spins[j + 1], forces[j])[1]
+                       for j in range(n - 1))
     return GroupMotion(float(v_b), spins, forces, float(contact_loss), float(groove_loss))
 
 

@@ -197,8 +197,8 @@ class FeedUnit:
         holds to 1e-9 of the load or the preload; load steps are tried if a direct solve fails."""
         load = checks.finite("load", load)
         scale = max(float(np.max(np.abs(load))), self.preload)
-        rest = self.tangent(np.zeros(5))
-        q0 = np.linalg.solve(rest, load) if start is None else np.asarray(start, dtype=float)
+        q0 = (np.linalg.solve(self.tangent(np.zeros(5)), load) if start is None
+              else np.asarray(start, dtype=float))
         q, error = self._solve(load, q0)
         for steps in CONTINUATION_STEPS:
             if error <= 1e-9 * scale:
