@@ -169,7 +169,8 @@ def test_fmu_passes_fmpy_validation(fmu_dir, name):
 # -- 2. modelDescription -------------------------------------------------------------------------
 # Base-unit exponents (kg, m, s) worked out by hand for the units of the FMU contracts.
 HAND_BASE_UNITS = {"m": (0, 1, 0), "m/s": (0, 1, -1), "m/s2": (0, 1, -2), "N": (1, 1, -2),
-                   "N/m": (1, 0, -2), "N.s/m": (1, 0, -1), "N.m": (1, 2, -2), "kg.m2": (1, 2, 0)}
+                   "N/m": (1, 0, -2), "N.s/m": (1, 0, -1), "N.m": (1, 2, -2), "kg.m2": (1, 2, 0),
+                   "W": (1, 2, -3)}
 
 _CONTACT = {"y": ("input", "m"), "y_dot": ("input", "m/s"), "u": ("input", "m/s"),
             "F_contact": ("output", "N"), "F_upper": ("output", "N"), "F_lower": ("output", "N"),
@@ -212,6 +213,10 @@ CONTRACT = {
                        "tool_d_z": ("output", "m"), "max_ball_load": ("output", "N")},
     "MillingForce": {"u_feed": ("input", "m/s"), "F_x": ("output", "N"), "F_y": ("output", "N"),
                      "F_z": ("output", "N")},
+    "BallToBallFriction": {"u": ("input", "m/s"), "x": ("input", "m"),
+                           "F_normal": ("input", "N"), "F_side": ("input", "N"),
+                           "M_yaw": ("input", "N.m"), "F_friction": ("output", "N"),
+                           "contact_force": ("output", "N"), "friction_loss": ("output", "W")},
 }
 
 
@@ -478,6 +483,9 @@ def test_two_different_contact_fmus_side_by_side(open_fmu):
     assert ehl.get("F_upper") > dry.get("F_upper")
 
 
+#: a row whose rear balls catch up: rail groove wave and a yaw moment
+B2B = {"wave_amplitude": 0.02, "wavelength": 5e-3, "deviation_BL": -0.03, "F_normal": 420.0,
+       "M_yaw": 0.3}
 SIMULATIONS = {  # name -> start values of a short simulate_fmu run
     "FeedKinematics": {},
     "VerticalDynamics": {"F_ext": 1000.0},
@@ -487,6 +495,7 @@ SIMULATIONS = {  # name -> start values of a short simulate_fmu run
     "BallCarriage5DOF": {"static_M_y": 1.45, "u_feed": 0.3},
     "FeedUnitErrors": {"F_z": -2000.0, "point_x": 0.05, "point_z": 0.1},
     "MillingForce": {"u_feed": 0.1},
+    "BallToBallFriction": {**B2B, "u": 0.1},
 }
 
 
@@ -511,7 +520,9 @@ def test_fmus_instantiate_again_after_a_previous_instance_was_freed(fmu_dir):
     ("FeedKinematics", {}, 1e-3),
     ("BallCarriage5DOF", {"static_M_y": 2.9, "F_z": -5.0, "u_feed": 0.3}, 1e-5),
     ("MillingForce", {"u_feed": 0.1, "start_angle": 0.1}, 1e-4),
-], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics", "BallCarriage5DOF", "MillingForce"])
+    ("BallToBallFriction", {**B2B, "u": 0.3}, 2e-3),
+], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics", "BallCarriage5DOF", "MillingForce",
+        "BallToBallFriction"])
 def test_restored_fmu_state_replays_identically(open_fmu, name, start, h):
     slave = open_fmu(name, **start).step(h, n=3)
     state, time = slave.fmu.getFMUstate(), slave.time
@@ -549,6 +560,10 @@ def case(*values, id):
     case("FeedUnitErrors", {"F_z": -1000.0}, {"point_y": float("inf")}, "point_y",
          id="FeedUnitErrors-point_y-inf"),
     case("MillingForce", {"u_feed": 0.1}, {"u_feed": NAN}, "u_feed", id="MillingForce-u_feed-nan"),
+    case("BallToBallFriction", {**B2B, "u": 0.1}, {"M_yaw": 50.0}, "F_side, M_yaw",
+         id="BallToBallFriction-M_yaw-two-point-contact"),
+    case("BallToBallFriction", {**B2B, "u": 0.1}, {"F_normal": -1.0}, "F_normal",
+         id="BallToBallFriction-F_normal-negative"),
 ])
 def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, start, bad,
                                                               name_in_message):
@@ -582,6 +597,8 @@ def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, st
          id="FeedUnitErrors-poisson_ratio"),
     case("MillingForce", {"exit_angle": 5.0}, {"exit_angle": math.pi}, "exit_angle",
          id="MillingForce-exit_angle"),
+    case("BallToBallFriction", {"zone_length": 0.04}, {"zone_length": 0.043}, "zone_length",
+         id="BallToBallFriction-zone_length-no-clearance"),
     case("FeedKinematics", {"profile": "table", "table_file": "/nonexistent_dir/feed.csv"},
          {"profile": "biharmonic"}, "table_file", id="FeedKinematics-table_file-no-such-file"),
 ])

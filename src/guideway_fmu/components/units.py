@@ -19,4 +19,5 @@ BASE_UNITS = {  # unit name -> exponents of kg, m, s, rad
     "N.m": {"kg": 1, "m": 2, "s": -2},
     "kg.m2": {"kg": 1, "m": 2},
     "rad/s": {"rad": 1, "s": -1},
+    "W": {"kg": 1, "m": 2, "s": -3},
 }

@@ -311,31 +311,34 @@ def solve_group(bearing: Bearing, balls: list[Ball], start: GroupMotion | None =
 
 
 # -- the analytical model (eqs. 11-33) ----------------------------------------------------------
-def diagonal_loads(bearing: Bearing, side: float, normal: float) -> tuple[float, float]:
-    """(F_U, F_D) [N]: the BL-TR and BR-TL loads at the nominal angle (Sec. 2.4.1)."""
+def diagonal_loads(bearing: Bearing, side, normal):
+    """(F_U, F_D) [N]: the BL-TR and BR-TL loads at the nominal angle (Sec. 2.4.1), of one
+    ball or of arrays of balls."""
     c, s = np.cos(bearing.nominal_angle), np.sin(bearing.nominal_angle)
+    side, normal = np.asarray(side, dtype=float), np.asarray(normal, dtype=float)
     upper, lower = (normal / c - side / s) / 2, (normal / c + side / s) / 2
-    if min(upper, lower) <= 0:
-        raise ValueError(f"side_ratio {side / normal:g} leaves the ball in two-point contact "
+    if np.min(np.minimum(upper, lower)) <= 0:
+        worst = np.max(np.abs(side / normal))
+        raise ValueError(f"side_ratio {worst:g} leaves the ball in two-point contact "
                          f"(|N_x / N_y| must stay below tan(beta_0) = {s / c:.3g})")
-    return upper, lower
+    return upper[()], lower[()]
 
 
-def velocity_deviation(bearing: Bearing, deviations, upper: float, lower: float) -> float:
-    """epsilon of eq. 22: v_B = (1 + epsilon) v / 2, from Delta beta_i [rad] (BL, BR, TR, TL)
-    and the diagonal loads F_U, F_D [N]."""
+def velocity_deviation(bearing: Bearing, deviations, upper, lower):
+    """epsilon of eq. 22: v_B = (1 + epsilon) v / 2, from Delta beta_i [rad] (BL, BR, TR, TL
+    along the first axis) and the diagonal loads F_U, F_D [N]."""
     d_bl, d_br, d_tr, d_tl = checks.finite("deviations", deviations)
-    wu, wd = upper ** (2 / 3), lower ** (2 / 3)
-    return float((1 - np.cos(2 * bearing.nominal_angle))
-                 * ((-d_bl + d_tr) * wu + (-d_br + d_tl) * wd) / (2 * (wu + wd)))
+    wu, wd = np.asarray(upper) ** (2 / 3), np.asarray(lower) ** (2 / 3)
+    return ((1 - np.cos(2 * bearing.nominal_angle))
+            * ((-d_bl + d_tr) * wu + (-d_br + d_tl) * wd) / (2 * (wu + wd)))[()]
 
 
-def drag(bearing: Bearing, upper: float, lower: float) -> float:
+def drag(bearing: Bearing, upper, lower):
     """G [N]: the push that changes a ball's epsilon by 1 (eq. 30: F_B2B = G1 G2 /
     (G1 + G2) (epsilon_1 - epsilon_2))."""
-    return float(2 * bearing.maps.slope * bearing.friction * bearing.radius ** (2 / 3)
-                 * (upper ** (2 / 3) + lower ** (2 / 3))
-                 / (bearing.psi * (1 - np.cos(2 * bearing.nominal_angle))))
+    return (2 * bearing.maps.slope * bearing.friction * bearing.radius ** (2 / 3)
+            * (np.asarray(upper) ** (2 / 3) + np.asarray(lower) ** (2 / 3))
+            / (bearing.psi * (1 - np.cos(2 * bearing.nominal_angle))))[()]
 
 
 def contact_slide_speed(bearing: Bearing) -> float:

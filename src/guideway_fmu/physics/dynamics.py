@@ -25,6 +25,10 @@ class ContinuousModel(ABC):
     inputs: tuple[str, ...] = ()
     #: names of the states, in the order of the state vectors
     states: tuple[str, ...] = ()
+    #: False where the derivatives jump with the state (contacts that close and part): an
+    #: implicit integrator's Jacobian fails there, so the reference steps such a model with an
+    #: explicit Runge-Kutta method whose error control places its steps around the jumps
+    smooth: bool = True
 
     def state_scales(self) -> tuple[float, ...]:
         """Nominal magnitude of each state (its unit): the reference's absolute tolerances are

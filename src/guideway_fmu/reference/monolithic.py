@@ -6,7 +6,8 @@ the same continuous-time model the FMU steps (``physics/dynamics.py``), built fr
 start values overridden by the scenario's parameters. The models are assembled along the
 scenario's connections: one state vector (every model's states, in the order of the system's
 components), every input fed by the output it is connected to or held at its start value, and
-``solve_ivp`` (LSODA at rtol 1e-10 by default) integrates the lot. Inputs that serve only the
+``solve_ivp`` (LSODA at rtol 1e-10 by default; RK45 where a model is not smooth, see
+``ContinuousModel.smooth``) integrates the lot. Inputs that serve only the
 coupling (tangents, interface laws) are not among the models' inputs, and step settings (the
 contact's interpolate_inputs) are not among their parameters: the equations are those of the
 physics, not of the FMUs' steps.
@@ -51,11 +52,12 @@ def check(system) -> None:
     _Assembly(system)
 
 
-def simulate(system, times=None, rtol: float = 1e-10, method: str = "LSODA") -> Reference:
+def simulate(system, times=None, rtol: float = 1e-10, method: str | None = None) -> Reference:
     """Integrate ``system`` (a checked ``cosim.system.System``) from experiment.start.
 
     ``times`` [s], increasing and not before the start, are the output times; by default the
-    macro-step grid start, start + step, ..., stop. ``method`` is a ``solve_ivp`` method.
+    macro-step grid start, start + step, ..., stop. ``method`` is a ``solve_ivp`` method; by
+    default LSODA, or RK45 when a model's derivatives jump (``ContinuousModel.smooth``).
     Raises ValueError naming the component for a component or a wiring that the reference
     cannot model, RuntimeError when the integration fails.
     """
@@ -66,6 +68,9 @@ def simulate(system, times=None, rtol: float = 1e-10, method: str = "LSODA") -> 
     if times.ndim != 1 or times.size < 2 or np.any(np.diff(times) <= 0) or times[0] < exp.start:
         raise ValueError(f"times must increase, from the start time {exp.start} s on, got {times!r}")
     model = _Assembly(system)
+    if method is None:
+        smooth = all(b.model.smooth for b in model.blocks.values())
+        method = "LSODA" if smooth else "RK45"
     y0 = model.initial_state(exp.start)
     t0 = time.perf_counter()
     sol = solve_ivp(model.rhs, (exp.start, times[-1]), y0, method=method, t_eval=times,
