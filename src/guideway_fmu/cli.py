@@ -1,8 +1,9 @@
-"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball``."""
+"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball | wear``."""
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import re
 import sys
 from fractions import Fraction
@@ -151,6 +152,22 @@ def _feed_unit(args) -> str:
     return fa.format_sweep(result) + (f"\nplot: {result['plot']}" if args.plot else "")
 
 
+def _wear(args) -> str:
+    from .analysis import wear
+    if not (math.isfinite(args.distance) and args.distance > 0):
+        raise ValueError(f"--distance must be a running distance > 0 m, got {args.distance}")
+    if args.points < 2:
+        raise ValueError(f"--points must be >= 2, got {args.points}")
+    case = wear.read_case(args.case)
+    result = wear.analyse(case, args.distance, args.points)
+    if args.plot is not None:
+        from .analysis.wear_plots import plot_figures
+        result["plot"] = str(plot_figures(case, result, args.plot))
+    if args.json:
+        return json.dumps(result, indent=2)
+    return wear.format_result(result) + (f"\nplot: {result['plot']}" if args.plot else "")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="guideway-fmu", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -186,6 +203,12 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("ball-to-ball", help="ball-to-ball contact force and friction of two balls")
     p.add_argument("case", type=Path, help="case file (docs/ball-to-ball.md)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p = sub.add_parser("wear", help="raceway wear and preload loss of a ball guide over its running distance")
+    p.add_argument("case", type=Path, help="case file (docs/wear.md)")
+    p.add_argument("--distance", type=float, default=5000.0, help="running distance [m] (default 5000)")
+    p.add_argument("--points", type=int, default=101, help="distances reported (default 101)")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument("--plot", type=Path, default=None, help="PNG of the analogues of Figs. 14-17")
     args = parser.parse_args(argv)
     try:
         if args.command == "build":
@@ -231,6 +254,8 @@ def main(argv: list[str] | None = None) -> int:
             case = ball_to_ball.read_case(args.case)
             result = ball_to_ball.analyse(case, args.case)
             print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result))
+        elif args.command == "wear":
+            print(_wear(args))
     except (ValueError, OSError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
         # EHLConvergenceError, files that cannot be read or written
         print(f"guideway-fmu {args.command}: error: {exc}", file=sys.stderr)

@@ -184,19 +184,19 @@ def test_rate_table_matches_direct_evaluation(lg20):
 
 def test_wear_grows_with_load_and_with_creep_rate_figs_14_to_16():
     loads = [500.0, 2000.0, 5000.0]
-    depth = [wear.simulate(wear.Guide(), f, 5000.0, 3).columns["row_wear_upper"][-1]
+    depth = [wear.simulate(wear.Guide(), f, 5000.0, 3).columns["wear_upper"][-1]
              for f in loads]
     assert depth == sorted(depth) and depth[0] > 0
     ratios = [0.1, 0.3, 0.6]
     by_creep = [wear.simulate(wear.Guide(tangential_ratio=r), 2000.0, 5000.0, 3)
-                .columns["row_wear_upper"][-1] for r in ratios]
+                .columns["wear_upper"][-1] for r in ratios]
     assert by_creep == sorted(by_creep)
 
 
 def test_wear_growth_slows_with_distance_fig_15():
     # the upper rows' interference wears away, the lower rows take less, the balls unload
     run = wear.simulate(wear.Guide(wear_coefficient=0.5), 2000.0, 2e6, 41)
-    rate = np.diff(run.columns["row_wear_upper"])
+    rate = np.diff(run.columns["wear_upper"])
     assert rate[-1] < 0.9 * rate[0]
     assert np.all(np.diff(rate) <= 1e-12 * rate[0])
 

@@ -200,8 +200,9 @@ class Guide:
         return self.wear_rate(q_u), self.wear_rate(q_l)
 
     def state(self, load: float, wear) -> dict:
-        """The slider at the wear depths (h_u, h_l) [m] under F [N]: wear depth w and preload
-        deformation delta_0 - w [m], the preload Q_0 [N] per ball, z [m], the balls' loads [N]."""
+        """The slider at the rows' wear depths (h_u, h_l) [m] under F [N]: wear depth w and
+        preload deformation delta_0 - w [m], the preload Q_0 [N] per ball, z [m], the balls'
+        loads [N] and the slider's raceway wear 0.5 h of each row [m] (eq. 60)."""
         upper, lower = self.interferences(wear)
         z, q_u, q_l = self.settle(load, upper, lower)
         depth = (wear[0] + wear[1]) / 4
@@ -209,7 +210,7 @@ class Guide:
         return {"wear_depth": depth, "preload_deformation": at_rest,
                 "preload": float(hertz_point.load(self.ball_constant, at_rest)),
                 "vertical_displacement": z, "ball_load_upper": q_u, "ball_load_lower": q_l,
-                "row_wear_upper": float(wear[0]), "row_wear_lower": float(wear[1])}
+                "wear_upper": 0.5 * float(wear[0]), "wear_lower": 0.5 * float(wear[1])}
 
     def advance(self, load: float, wear, distance: float) -> np.ndarray:
         """(h_u, h_l) [m] after running ``distance`` [m] >= 0 under the load F [N] held."""
