@@ -217,6 +217,9 @@ CONTRACT = {
                            "F_normal": ("input", "N"), "F_side": ("input", "N"),
                            "M_yaw": ("input", "N.m"), "F_friction": ("output", "N"),
                            "contact_force": ("output", "N"), "friction_loss": ("output", "W")},
+    "Wear": {"F_load": ("input", "N"), "distance": ("input", "m"),
+             "preload_deformation": ("output", "m"), "preload": ("output", "N"),
+             "wear_depth": ("output", "m"), "vertical_displacement": ("output", "m")},
 }
 
 
@@ -496,6 +499,7 @@ SIMULATIONS = {  # name -> start values of a short simulate_fmu run
     "FeedUnitErrors": {"F_z": -2000.0, "point_x": 0.05, "point_z": 0.1},
     "MillingForce": {"u_feed": 0.1},
     "BallToBallFriction": {**B2B, "u": 0.1},
+    "Wear": {"F_load": 2000.0, "wear_coefficient": 0.5},
 }
 
 
@@ -513,24 +517,36 @@ def test_fmus_instantiate_again_after_a_previous_instance_was_freed(fmu_dir):
 
 
 # -- 5. FMU state --------------------------------------------------------------------------------
-@pytest.mark.parametrize("name, start, h", [
+@pytest.mark.parametrize("name, start, h, ramp", [
     ("VerticalDynamics", {"K_contact": 1e6, "C_contact": 50.0, "F_contact": 200.0, "F_ext": 1000.0},
-     1e-4),
-    ("ContactEHL", {"film_model": "extrapolated", "u": 0.29, "y": 1e-6, "y_dot": 1e-3}, 1e-5),
-    ("FeedKinematics", {}, 1e-3),
-    ("BallCarriage5DOF", {"static_M_y": 2.9, "F_z": -5.0, "u_feed": 0.3}, 1e-5),
-    ("MillingForce", {"u_feed": 0.1, "start_angle": 0.1}, 1e-4),
-    ("BallToBallFriction", {**B2B, "u": 0.3}, 2e-3),
+     1e-4, {}),
+    ("ContactEHL", {"film_model": "extrapolated", "u": 0.29, "y": 1e-6, "y_dot": 1e-3}, 1e-5, {}),
+    ("FeedKinematics", {}, 1e-3, {}),
+    ("BallCarriage5DOF", {"static_M_y": 2.9, "F_z": -5.0, "u_feed": 0.3}, 1e-5, {}),
+    ("MillingForce", {"u_feed": 0.1, "start_angle": 0.1}, 1e-4, {}),
+    ("BallToBallFriction", {**B2B, "u": 0.3}, 2e-3, {}),
+    ("Wear", {"F_load": 2000.0, "wear_coefficient": 0.5}, 1.0, {"distance": 1e5}),
 ], ids=["VerticalDynamics", "ContactEHL", "FeedKinematics", "BallCarriage5DOF", "MillingForce",
-        "BallToBallFriction"])
-def test_restored_fmu_state_replays_identically(open_fmu, name, start, h):
-    slave = open_fmu(name, **start).step(h, n=3)
+        "BallToBallFriction", "Wear"])
+def test_restored_fmu_state_replays_identically(open_fmu, name, start, h, ramp):
+    # ``ramp``: inputs that grow by the given amount each step (the Wear FMU follows its
+    # running-distance input, not the time)
+    slave = open_fmu(name, **start)
+
+    def steps(first, count):
+        out = []
+        for k in range(first, first + count):
+            slave.set(**{key: rate * k for key, rate in ramp.items()})
+            out.append(slave.step(h).outputs())
+        return out
+
+    steps(1, 3)
     state, time = slave.fmu.getFMUstate(), slave.time
-    recorded = [slave.step(h).outputs() for _ in range(5)]
+    recorded = steps(4, 5)
     assert recorded[0] != recorded[-1]  # the state really evolves
     slave.fmu.setFMUstate(state)
     slave.time = time
-    assert [slave.step(h).outputs() for _ in range(5)] == recorded
+    assert steps(4, 5) == recorded
     slave.fmu.freeFMUstate(state)
 
 
@@ -564,6 +580,8 @@ def case(*values, id):
          id="BallToBallFriction-M_yaw-two-point-contact"),
     case("BallToBallFriction", {**B2B, "u": 0.1}, {"F_normal": -1.0}, "F_normal",
          id="BallToBallFriction-F_normal-negative"),
+    case("Wear", {"F_load": 2000.0}, {"distance": -1.0}, "distance", id="Wear-distance-negative"),
+    case("Wear", {"F_load": 2000.0}, {"F_load": NAN}, "F_load", id="Wear-F_load-nan"),
 ])
 def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, start, bad,
                                                               name_in_message):
@@ -599,6 +617,10 @@ def test_bad_input_discards_step_and_keeps_last_valid_outputs(open_fmu, name, st
          id="MillingForce-exit_angle"),
     case("BallToBallFriction", {"zone_length": 0.04}, {"zone_length": 0.043}, "zone_length",
          id="BallToBallFriction-zone_length-no-clearance"),
+    case("Wear", {"fractal_dimension": 3.5}, {"fractal_dimension": 2.8}, "fractal dimension",
+         id="Wear-fractal_dimension"),
+    case("Wear", {"rolling_resistance": False, "tangential_ratio": 1.2},
+         {"tangential_ratio": 0.1}, "tangential_ratio", id="Wear-tangential_ratio-sliding"),
     case("FeedKinematics", {"profile": "table", "table_file": "/nonexistent_dir/feed.csv"},
          {"profile": "biharmonic"}, "table_file", id="FeedKinematics-table_file-no-such-file"),
 ])
@@ -758,7 +780,7 @@ def test_ball_carriage_vertical_oscillation_has_the_modal_frequency_limiting_cas
     t = (crossings - v[crossings] / (v[crossings + 1] - v[crossings])) * h
     frequency = (len(t) - 1) / (2 * (t[-1] - t[0]))
     model = bc.from_parameters(**{**slave_parameters(), "ball_damping": 0.0})
-    balls = bc.HertzBalls(model.body, bc.ball_positions(9, 43e-3 / 9), model.k_h, model.preload)
+    balls = bc.HertzBalls(model.body, bc.ball_positions(9, 43e-3 / 9), model.k_h, 46.6)
     expected = bc.modes(balls.tangent(np.zeros(5)), model.body.mass_matrix()).frequencies[3]
     assert frequency == pytest.approx(expected, rel=5e-3)
 
@@ -815,3 +837,34 @@ def test_milling_force_fmu_follows_the_spindle_hand_calculation(open_fmu):
     out = slave.outputs()
     assert out["F_x"] == pytest.approx(-28e3 * 2e-3, rel=1e-5)
     assert out["F_z"] == pytest.approx(-2e3 * 2e-3, rel=1e-5)
+
+
+# -- 8. wear ------------------------------------------------------------------------------------
+def test_wear_fmu_stepped_along_the_distance_matches_the_wear_command_physics(open_fmu):
+    # 40 steps of 1e5 m against one solve_ivp over 4e6 m with the preload loss as an event:
+    # independent integrations of the same rates
+    from guideway_fmu.physics import wear
+    guide = wear.Guide(wear_coefficient=0.5)
+    run = wear.simulate(guide, 2000.0, 4e6, 41)
+    slave = open_fmu("Wear", F_load=2000.0, wear_coefficient=0.5)
+    got = []
+    for k in range(1, 41):
+        slave.set(distance=1e5 * k)
+        got.append(slave.step(10.0).outputs())
+    for key in ("wear_depth", "preload_deformation", "vertical_displacement", "preload"):
+        ours = np.array([row[key] for row in got])
+        np.testing.assert_allclose(ours, run.columns[key][1:], rtol=2e-6,
+                                   atol=1e-6 * np.ptp(run.columns[key]), err_msg=key)
+    assert run.preload_lost_at is not None  # the run crosses the loss: preload reaches 0
+    assert got[-1]["preload"] == 0.0 and got[-1]["preload_deformation"] < 0
+
+
+def test_wear_fmu_refuses_a_running_distance_that_goes_back(open_fmu):
+    slave = open_fmu("Wear", F_load=2000.0, distance=10.0)
+    slave.set(distance=100.0)
+    slave.step(1.0)
+    slave.set(distance=50.0)
+    assert_discarded(slave, 1.0, "must not decrease")
+    slave.set(distance=150.0)
+    slave.step(1.0)  # not fatal
+    assert slave.get("wear_depth") > 0

@@ -103,7 +103,7 @@ def test_equilibrium_balances_the_load_and_refuses_the_unresisted_motion():
 
 def test_time_domain_small_oscillation_has_the_eigenfrequency_limiting_case():
     model = bc.BallCarriageModel(BODY, PER_ROW, PITCH, ball_stiffness=TABLE2[0.0])
-    inputs = dict.fromkeys(bc.LOADS, 0.0) | {"u_feed": 0.0}
+    inputs = dict.fromkeys(bc.LOADS, 0.0) | {"u_feed": 0.0, "preload": 0.0}
     state = np.array(model.initial_state(0.0, inputs))
     state[1] = 1e-8  # vertical offset: the vertical mode alone (uncoupled at M_y = 0)
     h, v = 2e-6, []
@@ -119,7 +119,8 @@ def test_time_domain_small_oscillation_has_the_eigenfrequency_limiting_case():
 
 def test_feed_motion_moves_the_balls_by_half_the_travel_hand_calculation():
     model = bc.BallCarriageModel(BODY, PER_ROW, PITCH, ball_stiffness=TABLE2[0.0])
-    rates = model.derivatives(0.0, np.zeros(11), dict.fromkeys(bc.LOADS, 0.0) | {"u_feed": 0.3})
+    rates = model.derivatives(0.0, np.zeros(11),
+                              dict.fromkeys(bc.LOADS, 0.0) | {"u_feed": 0.3, "preload": 0.0})
     assert rates[10] == 0.15
     np.testing.assert_allclose(bc.ball_positions(PER_ROW, PITCH, PITCH),
                                bc.ball_positions(PER_ROW, PITCH)[[-1, *range(PER_ROW - 1)]],

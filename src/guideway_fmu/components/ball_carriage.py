@@ -26,8 +26,10 @@ class BallCarriage5DOF(GuidewaySlave):
     contact), C the balls' damping, F the load inputs plus the static_* parameters. It starts in
     static equilibrium under the loads at the start, at rest. The balls roll along the load zone
     at half the feed velocity, which modulates the stiffness at the ball-passage frequency
-    u_feed / (2 pitch). Integrated by RK4 substeps with the inputs held over a step. It stands in
-    for VerticalDynamics plus a contact FMU when the guide is a ball guide."""
+    u_feed / (2 pitch). The preload is an input, so that raceway wear (the Wear FMU) can take it
+    away during a run. Integrated by RK4 substeps (omega_max h <= 0.5 at the state the step
+    starts from) with the inputs held over a step. It stands in for VerticalDynamics plus a
+    contact FMU when the guide is a ball guide."""
 
     description = __doc__.splitlines()[0]
     internal_state = ("state", "time")
@@ -44,7 +46,6 @@ class BallCarriage5DOF(GuidewaySlave):
         self.parameter("pitch", 43e-3 / 9, "m", "ball spacing along x")
         self.parameter("ball_diameter", 4.763e-3, "m", "ball diameter (Hertz balls)")
         self.parameter("conformity", 0.534, "1", "groove radius / ball diameter (> 0.5)")
-        self.parameter("preload", 46.6, "N", "normal load of each ball at rest")
         self.parameter("ball_stiffness", "", None, "per-row ball stiffnesses [N/m], space "
                        "separated, both rows alike: linear springs instead of Hertz balls "
                        "(empty: Hertz)")
@@ -55,14 +56,16 @@ class BallCarriage5DOF(GuidewaySlave):
             self.input(name, 0.0, unit, f"external {'force' if unit == 'N' else 'moment'} {name} "
                        f"on the carriage, held over a step")
         self.input("u_feed", 0.0, "m/s", "feed velocity of the carriage along x")
+        self.input("preload", 46.6, "N", "normal load of each Hertz ball at rest (falls as the "
+                   "raceways wear: connect Wear.preload); > 0 at the start", True)
         for name in bc.DOF:
             self.output(name, UNITS[name], WHAT[name])
         for name in bc.DOF:
             self.output(f"{name}_dot", UNITS[name] + "/s", f"rate of the {WHAT[name]}")
         for row in (1, 2):
             self.output(f"row_load_{row}", "N", f"total normal ball load of row {row} (linear "
-                        f"springs: its change from rest)")
-        self.state, self.time, self._substeps = np.zeros(11), 0.0, None
+                        f"springs: its change from rest)", ("preload",))
+        self.state, self.time = np.zeros(11), 0.0
 
     @classmethod
     def continuous_model(cls, parameters):
@@ -72,7 +75,7 @@ class BallCarriage5DOF(GuidewaySlave):
         self.time = start_time
 
     def initialise(self):
-        self.state, self._substeps = None, None  # stays None if there is no equilibrium
+        self.state = None  # stays None if there is no equilibrium
         self.state = np.array(self.model().initial_state(self.time, self.model_inputs()))
 
     def _started(self) -> np.ndarray:
@@ -82,11 +85,9 @@ class BallCarriage5DOF(GuidewaySlave):
 
     def advance(self, t, h):
         self._started()
-        model = self.model()
-        if self._substeps is None:
-            self._substeps = 2 * math.pi * model.highest_frequency() / OMEGA_STEP
-        n = max(1, math.ceil(h * self._substeps))
-        inputs = self.model_inputs()
+        model, inputs = self.model(), self.model_inputs()
+        omega = 2 * math.pi * model.highest_frequency(self.state, inputs["preload"])
+        n = max(1, math.ceil(h * omega / OMEGA_STEP))
         for k in range(n):
             self.state = rk4_step(model, t + k * h / n, self.state, inputs, h / n)
         self.time = t + h

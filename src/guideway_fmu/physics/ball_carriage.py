@@ -159,7 +159,7 @@ class HertzBalls:
         self.body = body
         self.directions = contact_directions(body, positions)
         self.k_h = checks.positive("k_h", k_h)
-        self.preload = checks.positive("preload", preload)
+        self.preload = float(checks.non_negative("preload", preload))
         self.rest = float(hertz_point.approach(k_h, preload))
 
     def approaches(self, q) -> np.ndarray:
@@ -188,6 +188,9 @@ class HertzBalls:
         the complement of the unloaded K's null space. ValueError if the load drives that
         direction, or if the balls cannot carry it."""
         f = np.asarray(external, dtype=float)
+        if self.preload == 0.0:
+            raise ValueError("preload must be > 0 for the start in static equilibrium (unpreloaded "
+                             "balls have no stiffness at rest)")
         values, vectors = np.linalg.eigh(self.tangent(np.zeros(5)))
         free = values > 1e-9 * values.max()
         basis, rigid = vectors[:, free], vectors[:, ~free]
@@ -214,26 +217,28 @@ class HertzBalls:
 
 class BallCarriageModel(ContinuousModel):
     """The carriage in time: states q, dq/dt (DOF order) and the balls' shift s [m] along x;
-    inputs the generalized loads LOADS and the feed velocity u_feed [m/s] (ds/dt = u_feed / 2).
+    inputs the generalized loads LOADS, the feed velocity u_feed [m/s] (ds/dt = u_feed / 2) and
+    the balls' preload [N] (a ball's load at rest; it may change during a run, as raceway wear
+    takes it away).
 
     M d2q/dt2 = F + F_0 + R(q, s) - C(q, s) dq/dt, with F_0 the ``static_load`` (LOADS order),
     R the balls' restoring force and C = sum c g g^T over the balls in contact (``ball_damping``
-    c [N s/m] per ball). With ``balls`` (HertzBalls
-    parameters) the springs are nonlinear Hertz balls that may lose contact; with
-    ``ball_stiffness`` (one value per ball of a row, used for both rows) they are linear.
+    c [N s/m] per ball). With ``k_h`` (Hertz balls) the springs are nonlinear Hertz balls that
+    may lose contact; with ``ball_stiffness`` (one value per ball of a row, used for both rows)
+    they are linear and the preload plays no part.
     Outputs: q, dq/dt and each row's total normal ball load (with linear springs, its change
     from rest) [N]."""
 
-    inputs = LOADS + ("u_feed",)
+    inputs = LOADS + ("u_feed", "preload")
     states = (*DOF, *(f"{n}_dot" for n in DOF), "ball_shift")
 
-    def __init__(self, body: CarriageBody, per_row: int, pitch: float, *, k_h=None, preload=None,
+    def __init__(self, body: CarriageBody, per_row: int, pitch: float, *, k_h=None,
                  ball_stiffness=None, ball_damping: float = 0.0, static_load=(0.0,) * 5):
         self.body, self.per_row, self.pitch = body, per_row, pitch
         self.static_load = np.asarray(checks.finite("static_load", static_load), dtype=float)
         ball_positions(per_row, pitch)  # checks per_row and pitch
         if (ball_stiffness is None) == (k_h is None):
-            raise ValueError("give either ball_stiffness or the Hertz constant and preload")
+            raise ValueError("give either ball_stiffness or the Hertz constant")
         if ball_stiffness is not None:
             k = checks.positive("ball_stiffness", np.asarray(ball_stiffness, dtype=float))
             if k.shape != (per_row,):
@@ -241,23 +246,22 @@ class BallCarriageModel(ContinuousModel):
             self.linear = np.concatenate([k, k])
         else:
             self.linear = None
-            HertzBalls(body, ball_positions(per_row, pitch), k_h, preload)  # checks them
-            self.k_h, self.preload = k_h, preload
+            self.k_h = checks.positive("k_h", k_h)
         self.damping = checks.non_negative("ball_damping", ball_damping)
         self.mass = np.diag(body.mass_matrix())
 
-    def balls(self, shift: float):
-        """(directions, loads(q), stiffness(q)) of the balls at the shift [m]."""
+    def balls(self, shift: float, preload: float):
+        """(directions, loads(q), stiffness(q)) of the balls at the shift [m] and preload [N]."""
         positions = ball_positions(self.per_row, self.pitch, shift)
         if self.linear is not None:
             g = contact_directions(self.body, positions)
             return g, lambda q: self.linear * (g @ q), lambda q: self.linear
-        hertz = HertzBalls(self.body, positions, self.k_h, self.preload)
+        hertz = HertzBalls(self.body, positions, self.k_h, preload)
         return hertz.directions, hertz.loads, hertz.ball_stiffness
 
-    def rest_loads(self) -> float:
+    def rest_loads(self, preload: float) -> float:
         """Q_0 [N] of a ball at rest (0 with linear springs)."""
-        return 0.0 if self.linear is not None else self.preload
+        return 0.0 if self.linear is not None else preload
 
     def state_scales(self):
         return (1e-6,) * 5 + (1e-3,) * 5 + (self.pitch,)
@@ -270,46 +274,48 @@ class BallCarriageModel(ContinuousModel):
         """Static equilibrium under the load at t, at rest, balls unshifted."""
         load = self.load(inputs)
         if self.linear is not None:
-            k = stiffness_matrix(self.balls(0.0)[0], self.linear)
+            k = stiffness_matrix(self.balls(0.0, 0.0)[0], self.linear)
             q = np.linalg.lstsq(k, load, rcond=None)[0]
         else:
             q = HertzBalls(self.body, ball_positions(self.per_row, self.pitch), self.k_h,
-                           self.preload).equilibrium(load)
+                           inputs["preload"]).equilibrium(load)
         return (*q, *np.zeros(5), 0.0)
 
     def derivatives(self, t, state, inputs):
         y = np.asarray(state, dtype=float)
         q, rate = y[:5], y[5:10]
-        g, loads, stiffness = self.balls(y[10])
+        g, loads, stiffness = self.balls(y[10], inputs["preload"])
         in_contact = (loads(q) > 0.0) if self.linear is None else np.ones(g.shape[0], bool)
-        restoring = -g.T @ (loads(q) - self.rest_loads())
+        restoring = -g.T @ (loads(q) - self.rest_loads(inputs["preload"]))
         damping = self.damping * g.T @ (in_contact * (g @ rate))
         acceleration = (self.load(inputs) + restoring - damping) / self.mass
         return (*rate, *acceleration, 0.5 * inputs["u_feed"])
 
     def outputs(self, t, state, inputs, wanted=None):
         y = np.asarray(state, dtype=float)
-        _, loads, _ = self.balls(y[10])
+        _, loads, _ = self.balls(y[10], inputs["preload"])
         q_loads = loads(y[:5])
         out = {name: float(value) for name, value in zip(self.states[:10], y[:10])}
         out["row_load_1"] = float(np.sum(q_loads[:self.per_row]))
         out["row_load_2"] = float(np.sum(q_loads[self.per_row:]))
         return out
 
-    def highest_frequency(self) -> float:
-        """Highest natural frequency [Hz] at rest (for the integrator's substeps)."""
-        g, _, stiffness = self.balls(0.0)
-        k = stiffness_matrix(g, stiffness(np.zeros(5)))
+    def highest_frequency(self, state, preload: float) -> float:
+        """Highest natural frequency [Hz] of the carriage linearised at the state (for the
+        integrator's substeps: the balls stiffen under load and as the preload rises)."""
+        y = np.asarray(state, dtype=float)
+        g, _, stiffness = self.balls(y[10], preload)
+        k = stiffness_matrix(g, stiffness(y[:5]))
         return float(modes(k, np.diag(self.mass)).frequencies.max())
 
 
 def from_parameters(mass, inertia_x, inertia_y, inertia_z, contact_angle, d, e, balls_per_row,
-                    pitch, ball_diameter, conformity, preload, ball_stiffness, ball_damping,
+                    pitch, ball_diameter, conformity, ball_stiffness, ball_damping,
                     static_F_y, static_F_z, static_M_x, static_M_y, static_M_z) -> BallCarriageModel:
     """The validated model of the BallCarriage5DOF FMU's parameters (fmus/README.md):
     ``ball_stiffness`` a space-separated list of per-row values [N/m], or empty for the Hertz
-    balls of ``ball_diameter``, ``conformity`` and ``preload``; the static_* loads are added to
-    the load inputs."""
+    balls of ``ball_diameter`` and ``conformity`` (their preload is an input); the static_* loads
+    are added to the load inputs."""
     body = CarriageBody(mass, (inertia_x, inertia_y, inertia_z), contact_angle, d, e)
     static = (static_F_y, static_F_z, static_M_x, static_M_y, static_M_z)
     if str(ball_stiffness).strip():
@@ -321,5 +327,5 @@ def from_parameters(mass, inertia_x, inertia_y, inertia_z, contact_angle, d, e, 
         return BallCarriageModel(body, balls_per_row, pitch, ball_stiffness=values,
                                  ball_damping=ball_damping, static_load=static)
     k_h = hertz_point.ball_constant(hertz_point.BallGroove(ball_diameter, conformity))
-    return BallCarriageModel(body, balls_per_row, pitch, k_h=k_h, preload=preload,
-                             ball_damping=ball_damping, static_load=static)
+    return BallCarriageModel(body, balls_per_row, pitch, k_h=k_h, ball_damping=ball_damping,
+                             static_load=static)

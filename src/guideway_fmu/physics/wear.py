@@ -157,9 +157,19 @@ class Guide:
 
     @functools.cached_property
     def rate_table(self) -> tuple[np.ndarray, np.ndarray]:
-        """(ln Q, dh/dL) on the grid of ball loads the rate is interpolated in."""
+        """(ln Q, dh/dL) on the grid of ball loads the rate is interpolated in; it ends before
+        a load at which the balls would slide (the tangential force reaching mu Q)."""
         loads = self.threshold_load * np.geomspace(1.0 + 1e-9, RATE_TABLE_SPAN, RATE_TABLE_POINTS)
-        return np.log(loads), np.array([self.contact(q).wear_rate for q in loads])
+        rates = []
+        for q in loads:
+            try:
+                rates.append(self.contact(q).wear_rate)
+            except ValueError:
+                break
+        if len(rates) < 2:
+            raise ValueError(f"the balls slide at every load above the threshold "
+                             f"{self.threshold_load:.4g} N: the tangential force reaches mu Q")
+        return np.log(loads[:len(rates)]), np.array(rates)
 
     def wear_rate(self, load: float) -> float:
         """dh/dL [m/m] of a row whose balls carry Q [N]: 0 up to the threshold load,
@@ -256,3 +266,39 @@ def simulate(guide: Guide, load: float, distance: float, points: int = 101) -> W
     columns = {key: np.array([row[key] for row in rows]) for key in rows[0]}
     at = sol.t_events[0]
     return WearHistory(grid, columns, float(at[0]) if at.size else None)
+
+
+class DistanceModel:
+    """The slider's wear as the Wear FMU steps it: inputs F_load [N] (vertical load) and
+    distance [m] (running distance); states the rows' wear depths (h_u, h_l) [m], advanced along
+    the distance, not in time (the monolithic reference, which integrates in time, has no
+    model of it)."""
+
+    inputs = ("F_load", "distance")
+    states = ("row_wear_upper", "row_wear_lower")
+
+    def __init__(self, guide: Guide):
+        self.guide = guide
+
+    def advance(self, state, inputs: dict, distance: float) -> np.ndarray:
+        """The state after ``distance`` [m] of running under the load input held."""
+        return self.guide.advance(inputs["F_load"], state, distance)
+
+    def outputs(self, state, inputs: dict) -> dict:
+        """:meth:`Guide.state` at the state under the load input."""
+        return self.guide.state(inputs["F_load"], state)
+
+
+def from_parameters(ball_diameter, conformity, balls_per_row, contact_angle,
+                    initial_deformation, youngs_modulus, poisson_ratio, yield_strength, hardness,
+                    fractal_dimension, fractal_scale, wear_coefficient, friction, hysteresis,
+                    spacing_ratio, rolling_resistance, tangential_ratio,
+                    lateral_ratio) -> DistanceModel:
+    """The validated model of the Wear FMU's parameters (fmus/README.md): ``hardness`` 0 takes
+    2.8 yield_strength; ``rolling_resistance`` true takes the tangential force from the rolling
+    friction, false the fixed ``tangential_ratio``."""
+    return DistanceModel(Guide(
+        ball_diameter, conformity, balls_per_row, contact_angle, initial_deformation,
+        youngs_modulus, poisson_ratio, yield_strength, hardness if hardness != 0 else None,
+        fractal_dimension, fractal_scale, wear_coefficient, friction, hysteresis, spacing_ratio,
+        None if rolling_resistance else tangential_ratio, lateral_ratio))
