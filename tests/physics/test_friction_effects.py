@@ -60,6 +60,27 @@ def test_running_distance_and_preload_factor_by_hand():
     assert fl.preload_loss_factor(2.0, 0.3, 1.0) == pytest.approx(1 - 0.3 * (1 - math.exp(-2)))
 
 
+def test_wear_law_is_the_preload_of_the_wear_model_at_its_initial_rate_limiting_case():
+    # the preload-loss law "wear" takes the preload deformation down at a steady rate; the
+    # fractal-creep model (physics/wear.py) starts at that rate and slows as the balls unload:
+    # the two agree to first order in the distance (0.02 % at 1 % of the loss distance, 0.6 %
+    # at 5 %), and the law falls faster after
+    from guideway_fmu.physics import wear
+    guide = wear.Guide(wear_coefficient=0.5)
+    q0 = guide.state(0.0, (0.0, 0.0))["preload"]
+    loss_distance = guide.preload_deformation / (guide.wear_rate(q0) / 2)  # dw/dD = rate / 2
+    for share, tolerance in ((0.01, 5e-4), (0.05, 8e-3)):
+        d = share * loss_distance
+        preload = guide.state(0.0, guide.advance(0.0, (0.0, 0.0), d))["preload"]
+        law = fl.preload_loss_factor(d, 1.0, loss_distance, "wear", 1.5)
+        assert law == pytest.approx(preload / q0, rel=tolerance)
+        assert law <= preload / q0
+    # 0.3 of the level carried by a preload gone at D = 2: at D = 1 the factor is by hand
+    assert fl.preload_loss_factor(1.0, 0.3, 2.0, "wear", 10 / 9) == pytest.approx(
+        1 - 0.3 * (1 - 0.5 ** (10 / 9)))
+    assert fl.preload_loss_factor(3.0, 0.3, 2.0, "wear") == pytest.approx(0.7)  # gone: flat
+
+
 def test_table_factor_interpolates_equally_spaced_nodes_by_hand():
     # nodes at 0, 0.5, 1.0 with factors 1, 2, 0: at 0.25 -> 1.5, at 0.75 -> 1.0, held outside
     np.testing.assert_allclose(fl.table_factor([0.25, 0.75, -1.0, 2.0], 0.0, 1.0, [1.0, 2.0, 0.0]),
@@ -116,6 +137,7 @@ def test_running_distance_models_integrate_the_speed_hand_calculation():
     (lambda: fl.StribeckModel(0.01, -1.0, 2.0, 0.0, 1.0, **COULOMB),
      "stribeck_velocity"),
     (lambda: fl.PreloadLossModel(0.2, 0.0, **COULOMB), "wear_distance"),
+    (lambda: fl.PreloadLossModel(0.2, 1.0, "linear", **COULOMB), "law"),
     (lambda: fl.PositionTableModel(0.0, 1.0, "1 x", **COULOMB), "factors"),
     (lambda: fl.PositionTableModel(1.0, 1.0, "1 2", **COULOMB), "table_end"),
     (lambda: fl.StribeckModel(0.01, 0.01, 2.0, 0.0, 1.0,

@@ -146,8 +146,15 @@ class FrictionPreloadLoss(_RunningDistance):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.parameter("loss", 0.0, "1", "fraction of the level finally lost (< 1; < 0: a gain)")
-        self.parameter("wear_distance", 1.0, "m", "running distance of the loss (> 0)")
+        self.parameter("loss", 0.0, "1", "fraction of the level finally lost (< 1; < 0: a gain); "
+                       "law wear: the share the preload carries")
+        self.parameter("wear_distance", 1.0, "m", "running distance of the loss (> 0): the decay "
+                       "distance, or for law wear the distance at which the preload is gone")
+        self.parameter("law", "exponential", None, "exponential: the level decays as "
+                       "exp(-D/wear_distance); wear: the preload's share follows "
+                       "(1 - D/wear_distance)^load_exponent (raceways wearing steadily)")
+        self.parameter("load_exponent", 1.5, "1", "law wear: n of the preload Q0 ~ delta0^n "
+                       "(1.5 Hertz balls, 10/9 rollers)")
 
 
 class FrictionBallToBall(_RunningDistance, _FactorTable):

@@ -24,7 +24,8 @@ from itertools import combinations_with_replacement
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..physics import friction_effects
+from ..physics import ball_row, friction_effects
+from ..physics import ball_to_ball as b2b
 from ..physics.roller_friction import CoulombParams, coulomb_friction, regularised_sign
 from .run_io import MeasuredRun
 from .signals import SIGN_WIDTH, Derivation, Motion, smooth_channel
@@ -132,6 +133,11 @@ class Candidate:
     def rig_mass(self, ctx: Context, coef: np.ndarray) -> float:
         return ctx.run.moving_mass
 
+    def interpret(self, ctx: Context, fit: "Fit") -> dict:
+        """Physical parameters of a fit too costly to compute for every fold (a model run along
+        the record); the workflow adds them to the named effect's parameters."""
+        return {}
+
     def penalty(self, columns: np.ndarray) -> np.ndarray | None:
         """Rows appended to the least-squares system (regularisation), or None."""
         return None
@@ -163,7 +169,10 @@ class Candidate:
 
     def _refine(self, ctx, fit_mask, grid, best):
         """Each key of ``continuous`` of the best grid setting, in turn, to the BIC minimum on
-        the fit samples between its grid neighbours (bounded Brent search in its logarithm)."""
+        the fit samples between its grid neighbours among the settings that share its other
+        keys outside ``continuous`` (bounded Brent search in its logarithm)."""
+        fixed = [k for k in best[1] if k not in self.continuous]
+        grid = [s for s in grid if all(s.get(k) == best[1][k] for k in fixed)]
         for key in self.continuous:
             values = sorted({s[key] for s in grid})
             i = values.index(best[1][key])
@@ -386,7 +395,11 @@ class UnmodeledMass(Candidate):
 
 
 class PreloadLoss(Candidate):
-    """Coulomb level drifting exponentially with the running distance; setting: wear distance."""
+    """Coulomb level drifting down with the running distance, by either law of
+    :func:`friction_effects.preload_loss_factor`: the empirical exponential decay, or wear
+    taking the preload away at a steady rate (its share of the level following Q_0 ~ delta_0^n,
+    n by the [guideway] type). Settings: the law and its distance (the decay distance, or the
+    running distance at which the preload is gone, which a user can plan maintenance by)."""
 
     effect, signal, fmu_name, uses_position = ("preload_loss", "running_distance",
                                                "FrictionPreloadLoss", True)
@@ -394,36 +407,68 @@ class PreloadLoss(Candidate):
     running_distance = True
     continuous = ("wear_distance",)
 
+    @staticmethod
+    def exponent(ctx) -> float:
+        """n of Q_0 ~ delta_0^n: 10/9 for Palmgren's rollers, 1.5 for Hertz balls."""
+        return 10 / 9 if ctx.run.sections.get("guideway", {}).get("type") == "roller" else 1.5
+
     def settings(self, ctx):
         total = max(float(ctx.distance[-1]), 1e-9)
-        return [{"wear_distance": float(total * f)} for f in np.logspace(-1.5, 1.5, 13)]
+        return ([{"law": "exponential", "wear_distance": float(total * f)}
+                 for f in np.logspace(-1.5, 1.5, 13)]
+                + [{"law": "wear", "wear_distance": float(total * f)}
+                   for f in np.logspace(-0.3, 1.5, 10)])
 
     def columns(self, ctx, setting):
         v, d, w, tol = ctx.motion.v, ctx.distance, setting["wear_distance"], ctx.velocity_tolerance
-        kept = -self.law(v, d, 1.0, 0.0, w, tol)  # level 1 throughout
-        fading = -self.law(v, d, 1.0, 1.0, w, tol)  # exp(-D / w)
+        law, n = setting["law"], self.exponent(ctx)
+        kept = -self.law(v, d, 1.0, 0.0, w, tol, law, n)  # level 1 throughout
+        fading = -self.law(v, d, 1.0, 1.0, w, tol, law, n)  # exp(-D / w) or (1 - D / w)_+^n
         return np.column_stack([kept, fading])
 
     def physical(self, ctx, setting, coef):
+        """Besides the law's own numbers, what a user can plan by: the initial decay rate of the
+        level [1/m]; where the law is wear, the preload's share of the level and the running
+        distance at which the preload is gone as fitted; otherwise, where [guideway] gives the
+        preload, its share of the rig's load (preload + weight + normal force) and the distance
+        at which steady wear at that initial rate would take it (D_loss = share n / rate)."""
         start = float(coef[0] + coef[1])  # level at D = 0
         if start <= 0.0 or coef[0] < 0.0:
             return None
-        loss = float(coef[1]) / start
+        loss, w, n = float(coef[1]) / start, setting["wear_distance"], self.exponent(ctx)
         params = {"coulomb": start, "loss": loss}
-        fmu = {**ctx.coulomb_parameters(start), "loss": loss,
-               "wear_distance": setting["wear_distance"]}
+        if setting["law"] == "wear":
+            if not 0.0 <= loss <= 1.0:
+                return None  # the preload's share of the friction
+            params.update(initial_decay_rate=loss * n / w, preload_share=loss,
+                          distance_to_preload_loss=w)
+        else:
+            params["initial_decay_rate"] = loss / w
+            preload = float(ctx.run.sections.get("guideway", {}).get("preload", 0.0))
+            if preload > 0.0 and loss > 0.0:
+                share = min(preload / ctx.normal_load, 1.0)
+                params.update(preload_share=share,
+                              distance_to_preload_loss=share * n * w / loss)
+        fmu = {**ctx.coulomb_parameters(start), "loss": loss, "wear_distance": w,
+               "law": setting["law"], "load_exponent": n}
         return params, fmu
 
 
 class BallToBall(_Table):
     """Coulomb level varying irregularly with the running distance, nodes 1 to 4 ball diameters
-    apart in steps of sqrt 2 (ball guides only)."""
+    apart in steps of sqrt 2 (ball guides only). The fitted rise is read through the physical
+    row model as a contact-angle deviation of the grooves (:meth:`deviation`)."""
 
     effect, signal, fmu_name, uses_position = ("ball_to_ball_contact", "running_distance",
                                                "FrictionBallToBall", True)
     law = staticmethod(friction_effects.ball_to_ball_friction)
     running_distance = True
     guide_types = ("ball",)
+    #: what a rig file does not state, for the deviation: the grooves' conformity, the
+    #: friction between balls, the load zone's clearance (its length over balls x diameter,
+    #: minus 1), the probe's deviation amplitude [rad] and the samples the row is run at
+    CONFORMITY, CONTACT_FRICTION, CLEARANCE = 0.52, 0.1, 0.02
+    PROBE, SIMULATED = float(np.radians(1.0)), 1000
 
     def along(self, ctx):
         return ctx.distance
@@ -433,6 +478,55 @@ class BallToBall(_Table):
         total = float(ctx.distance[-1])
         return sorted({int(np.clip(total / (k * diameter), 2, 400)) + 1
                        for k in np.geomspace(1.0, 4.0, 5)})
+
+    @staticmethod
+    def wavelength(factors, spacing: float) -> float:
+        """The groove wave's length [m] the fitted level shows: a ball's rail position advances
+        half the carriage's running distance, so the level repeats over twice the wavelength;
+        half the period of the factors' strongest Fourier component (nodes ``spacing`` [m]
+        apart), at least one node spacing."""
+        power = np.abs(np.fft.rfft(factors - factors.mean()))[1:]
+        frequency = np.fft.rfftfreq(factors.size, spacing)[1:]
+        return float(max(0.5 / frequency[int(np.argmax(power))], spacing))
+
+    def interpret(self, ctx, fit) -> dict:
+        """The ball-to-ball friction the fit shows (the mean rise of the level over its lowest
+        node [N]) and the contact-angle deviation [deg] that gives it in the physical model:
+        each of the [guideway] rows a row of balls (physics/ball_row.py), packed against the
+        load zone's rear end, whose grooves' contact angles wave (BL sine, BR cosine) with the
+        length the level shows (:meth:`wavelength`), run along the record's motion; its friction grows in
+        proportion to the amplitude, so one probe amplitude scales to the fitted rise. Empty
+        where nothing rose."""
+        factors = friction_effects.parse_factors(fit.fmu_parameters["factors"])
+        rise = fit.parameters["coulomb"] * float(factors.mean() - factors.min())
+        guideway = ctx.run.sections["guideway"]
+        if rise <= 0.0:
+            return {}
+        rows = int(guideway.get("rows", 4))
+        balls = int(guideway.get("elements_per_row", 2))
+        radius = float(guideway["element_radius"])
+        spacing = float(ctx.distance[-1]) / (fit.setting["nodes"] - 1)
+        nu = 0.3
+        bearing = b2b.Bearing(radius, self.CONFORMITY,
+                              float(guideway.get("reduced_modulus", 2.0e11)) * (1 - nu**2), nu,
+                              self.CONTACT_FRICTION,
+                              np.radians(float(guideway.get("contact_angle_deg", 45.0))), 1.0)
+        row = ball_row.BallRow(bearing, max(balls, 2), max(balls, 2) * 2 * radius
+                               * (1 + self.CLEARANCE), np.zeros(4), self.PROBE,
+                               self.wavelength(factors, spacing), ctx.velocity_tolerance)
+        pick = np.unique(np.linspace(0, ctx.motion.time.size - 1, self.SIMULATED).astype(int))
+        probe = np.abs(ball_row.friction_history(row, ctx.motion.time[pick], ctx.motion.x[pick],
+                                                 ctx.motion.v[pick], ctx.normal_load / rows,
+                                                 packed=True))
+        # the probe's level over the same nodes, its rise measured as the fit's
+        nodes = np.linspace(0.0, float(ctx.distance[-1]), fit.setting["nodes"])
+        where = np.clip(np.rint(ctx.distance[pick] / spacing).astype(int), 0, nodes.size - 1)
+        level = np.array([probe[where == k].mean() for k in range(nodes.size) if np.any(where == k)])
+        per_degree = rows * float(level.mean() - level.min()) / np.degrees(self.PROBE)
+        out = {"ball_to_ball_friction": rise}
+        if per_degree > 0.0:
+            out["contact_angle_deviation_deg"] = float(rise / per_degree)
+        return out
 
 
 BASELINE = Candidate()

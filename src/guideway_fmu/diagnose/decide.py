@@ -27,7 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import locate, regression
-from .candidates import BASELINE, RUNNING_DISTANCE_EFFECTS, Context, Fit, candidates_for
+from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
+                         candidates_for)
 from .run_io import MeasuredRun, load_run
 from .signals import derive_motion, noise_rms
 
@@ -224,6 +225,8 @@ def decide(run_dir) -> Naming:
                 effect = "unknown"
             else:  # small structure no model or law accounts for: the inputs' own errors
                 equation, values = None, None
+    if winner is not None:
+        winner.parameters.update(CANDIDATES[winner.effect]().interpret(ctx, winner))
     scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
     twins = twins if winner is not None else []
     for twin in twins:  # the record holds no evidence between them: they share the pair's best

@@ -203,3 +203,22 @@ def from_parameters(radius, conformity, youngs_modulus, poisson_ratio, friction,
     return BallRow(bearing, balls, zone_length,
                    [deviation_BL, deviation_BR, deviation_TR, deviation_TL], wave_amplitude,
                    wavelength, velocity_tolerance)
+
+
+def friction_history(model: BallRow, time, x, u, normal: float, side: float = 0.0,
+                     yaw: float = 0.0, packed: bool = False) -> np.ndarray:
+    """F_friction [N] of the row at the samples of a motion (time [s], position x [m],
+    velocity u [m/s], inputs held between samples) under constant loads, the balls starting
+    evenly spaced, or ``packed``: touching from the zone's rear end, the clearance in front."""
+    t, x, u = (np.asarray(v, dtype=float) for v in (time, x, u))
+    inputs = {"u": float(u[0]), "x": float(x[0]), "F_normal": normal, "F_side": side,
+              "M_yaw": yaw}
+    state = (-model.zone_length / 2 + (np.arange(model.balls) + 0.5) * model.diameter if packed
+             else np.array(model.initial_state(t[0], inputs)))
+    out = np.empty(t.size)
+    for k in range(t.size):
+        inputs.update(u=float(u[k]), x=float(x[k]))
+        out[k] = model.outputs(t[k], state, inputs)["F_friction"]
+        if k + 1 < t.size:
+            state = model.advance(t[k], state, inputs, t[k + 1] - t[k])
+    return out

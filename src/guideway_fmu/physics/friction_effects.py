@@ -18,7 +18,11 @@ workflow fits them) and for one value at a time (the FMUs evaluate them per comm
 * Position-dependent friction: the Coulomb level times a factor interpolated linearly in a table
   of equally spaced positions x (waviness, defects, recirculation).
 * Preload loss: the Coulomb level falls with the running distance D (the accumulated |dx|),
-  F_c (1 - loss (1 - exp(-D / wear_distance))).
+  F_c (1 - loss g(D)): empirically g = 1 - exp(-D / wear_distance); or by wear
+  (physics/wear.py), the share ``loss`` of the level that the preload carries following the
+  preload Q_0 ~ delta_0^n (n = 1.5 for Hertz balls, 10/9 for Palmgren's rollers) while the
+  raceways wear its deformation delta_0 away at a steady rate, g = 1 - (1 - D / D_loss)_+^n
+  with D_loss [m] (``wear_distance``) the running distance at which the preload is gone.
 * Ball-to-ball contact (ball guides): neighbouring balls of the train slide on each other, which
   raises the friction level and makes it vary irregularly as the train's arrangement changes
   with the distance run; the level is F_c times a factor interpolated in a table over the
@@ -115,15 +119,25 @@ def running_distance(x):
     return np.concatenate(([0.0], np.cumsum(np.abs(np.diff(x)))))
 
 
-def preload_loss_factor(distance, loss, wear_distance):
-    """Remaining friction level [-] after the running distance D [m]:
-    1 - loss (1 - exp(-D / wear_distance)), loss [-] the final fraction lost, wear_distance [m] > 0."""
-    return 1.0 - loss * -np.expm1(-np.asarray(distance, dtype=float) / wear_distance)
+PRELOAD_LAWS = ("exponential", "wear")
 
 
-def preload_loss_friction(u, distance, coulomb, loss, wear_distance, velocity_tolerance=0.0):
-    """Coulomb friction [N] with the level drifting down over the running distance D [m]."""
-    level = coulomb * preload_loss_factor(distance, loss, wear_distance)
+def preload_loss_factor(distance, loss, wear_distance, law="exponential", exponent=1.5):
+    """Remaining friction level [-] after the running distance D [m], 1 - loss g(D): ``law``
+    "exponential", g = 1 - exp(-D / wear_distance), loss [-] the final fraction lost; "wear",
+    g = 1 - (1 - D / wear_distance)_+^exponent, loss the share the preload carries and
+    wear_distance [m] > 0 where it is gone."""
+    d = np.asarray(distance, dtype=float)
+    if law == "wear":
+        return 1.0 - loss * (1.0 - np.maximum(1.0 - d / wear_distance, 0.0) ** exponent)
+    return 1.0 - loss * -np.expm1(-d / wear_distance)
+
+
+def preload_loss_friction(u, distance, coulomb, loss, wear_distance, velocity_tolerance=0.0,
+                          law="exponential", exponent=1.5):
+    """Coulomb friction [N] with the level drifting down over the running distance D [m]
+    (:func:`preload_loss_factor`)."""
+    level = coulomb * preload_loss_factor(distance, loss, wear_distance, law, exponent)
     return -level * regularised_sign(u, velocity_tolerance)
 
 
@@ -269,15 +283,19 @@ class _RunningDistanceModel(EffectModel):
 class PreloadLossModel(_RunningDistanceModel):
     """:func:`preload_loss_friction` over the running distance."""
 
-    def __init__(self, loss, wear_distance, **coulomb):
+    def __init__(self, loss, wear_distance, law="exponential", load_exponent=1.5, **coulomb):
         self.loss = checks.in_range("loss", loss, -10.0, 1.0)
         self.distance_scale = checks.positive("wear_distance", wear_distance)
+        if law not in PRELOAD_LAWS:
+            raise ValueError(f"law must be one of {PRELOAD_LAWS}, got {law!r}")
+        self.law, self.exponent = law, float(checks.positive("load_exponent", load_exponent))
         super().__init__(**coulomb)
 
     def force(self, state, inputs):
         return preload_loss_friction(inputs["u"], state[0],
                                      self.coefficient * self.total_load(inputs), self.loss,
-                                     self.distance_scale, self.velocity_tolerance)
+                                     self.distance_scale, self.velocity_tolerance, self.law,
+                                     self.exponent)
 
 
 class BallToBallModel(_RunningDistanceModel, _TableModel):
