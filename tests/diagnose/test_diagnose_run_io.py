@@ -1,6 +1,8 @@
 """Reading a measured run: every refusal names the file and the row, column, section or key."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -120,3 +122,68 @@ def test_replay_from_csv_refusal_names_row_and_column(tmp_path):
     path.write_text("time,feed_position,feed_velocity,feed_acceleration\n0,0,1,2\n1,x,3,2\n")
     with pytest.raises(ValueError, match="row 3, column 'feed_position'"):
         Replay.from_csv(path)
+
+
+# -- the sign of friction_force -----------------------------------------------------------------
+def _friction_record(tmp_path, name, sign, stated):
+    """A pre-sliding run turned into a friction_force record (moving mass 0): the drive force
+    less m a, times ``sign`` (-1: opposing the motion), with friction_sign stated or not."""
+    from guideway_fmu.diagnose import truth
+    run = truth.simulate("presliding_hysteresis", np.random.default_rng(11), noise=0.005,
+                         n_samples=3000)
+    mass = run.info.parameters["moving_mass"]
+    friction = run.columns["drive_force"] - mass * run.truth["acceleration"]
+    columns = {k: v for k, v in run.columns.items() if k != "drive_force"}
+    columns["friction_force"] = sign * friction
+    rig = {**run.rig, "rig": {**run.rig["rig"], "moving_mass": 0.0},
+           "channels": {**run.rig["channels"], "outputs": ["friction_force"]}}
+    if stated:
+        rig["channels"]["friction_sign"] = "opposes_motion" if sign < 0 else "along_motion"
+    return truth.write_run(tmp_path / name, replace(run, columns=columns, rig=rig))
+
+
+@pytest.mark.parametrize("sign, stated", [(1.0, False), (-1.0, False), (-1.0, True)])
+def test_friction_force_in_either_sign_convention_names_the_same_effect(tmp_path, sign, stated):
+    from guideway_fmu.diagnose import decide
+    from guideway_fmu.diagnose.report import describe_friction_sign
+    named = decide.decide(_friction_record(tmp_path, "run", sign, stated))
+    assert named.effect == "presliding_hysteresis"
+    run = named.run
+    assert run.friction_sign == ("opposes_motion" if sign < 0 else "along_motion")
+    assert run.channel_sign == sign
+    words = describe_friction_sign(run)
+    assert ("as [channels] friction_sign states" in words) == stated
+    assert ("found from the data" in words) != stated
+
+
+def test_stated_friction_sign_wins_over_the_data(tmp_path):
+    # stated wrongly: the workflow believes the file, the Coulomb level then fits negative
+    from guideway_fmu.diagnose import decide
+    path = _friction_record(tmp_path, "run", -1.0, stated=False)
+    text = (path / "rig.toml").read_text().replace(
+        "[channels]", '[channels]\nfriction_sign = "along_motion"')
+    (path / "rig.toml").write_text(text)
+    with pytest.raises(ValueError, match="friction_force"):
+        decide.decide(path)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda t: t.replace("[channels]", '[channels]\nfriction_sign = "backwards"'),
+     "friction_sign' must be one of"),
+])
+def test_bad_friction_sign_is_refused_naming_the_key(tmp_path, edit, message):
+    path = _friction_record(tmp_path, "run", 1.0, stated=False)
+    (path / "rig.toml").write_text(edit((path / "rig.toml").read_text()))
+    with pytest.raises(ValueError, match=message):
+        load_run(path)
+
+
+def test_friction_sign_without_a_friction_channel_is_refused(tmp_path):
+    from guideway_fmu.diagnose import truth
+    path = truth.write_run(tmp_path / "run", truth.simulate("none", np.random.default_rng(3),
+                                                           n_samples=1000))
+    text = (path / "rig.toml").read_text().replace(
+        "[channels]", '[channels]\nfriction_sign = "opposes_motion"')
+    (path / "rig.toml").write_text(text)
+    with pytest.raises(ValueError, match="goes with a friction_force channel"):
+        load_run(path)

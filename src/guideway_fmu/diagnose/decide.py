@@ -142,6 +142,7 @@ def decide(run_dir) -> Naming:
         raise ValueError(f"{source}: [model] key 'friction': diagnose calibrates a 'coulomb' "
                          f"baseline; {run.model['friction']!r} is not supported as a baseline yet")
     motion = motion_of(run)
+    run.orient_friction(motion.v)
     ctx = Context.of(run, motion)
     usable = ~motion.standstill & ~motion.ends
     forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
@@ -162,7 +163,8 @@ def decide(run_dir) -> Naming:
         fitted = BASELINE.fit(ctx, mask)
         if fitted is None:
             raise ValueError(f"{run.path / 'data.csv'}: column '{run.channel}': the Coulomb level "
-                             f"fits negative; {run.channel} must be positive along the motion")
+                             f"fits negative; {run.channel} must be the force the drive applies, "
+                             f"along its own positive axis")
         return fitted
 
     def out_of_fold(predictions):  # each usable sample from the model fitted without it

@@ -150,6 +150,19 @@ def describe_standstill(speed: float, band: float | None) -> str:
             f"differenced velocity spreads starts and stops over its window)")
 
 
+def describe_friction_sign(run) -> str:
+    """How the friction_force channel's sign convention was taken, in words."""
+    if run.friction_sign is None:
+        return "no friction_force channel"
+    said = ("as [channels] friction_sign states" if run.friction_sign_stated
+            else "found from the data (its level along the direction of motion is "
+                 + ("positive" if run.friction_sign == "along_motion" else "negative") + ")")
+    what = ("along the motion (the force the sensor feels)" if run.friction_sign == "along_motion"
+            else "opposing the motion (the resistance); the workflow turned it along the motion "
+                 "and writes fit.csv and the plots back in the record's convention")
+    return f"friction_force {what}, {said}"
+
+
 def diagnosis_record(naming: Naming, realised: Realisation) -> dict:
     """The content of diagnosis.json."""
     before, after = realised.gaps(naming)
@@ -212,6 +225,7 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
                    "equation held-out gap":
                        f"{locate.gap(y, nm.baseline.prediction + nm.law, nm.held):.6g}"
                        if nm.law is not None else "-"},
+        "Sign of friction_force": {"convention": describe_friction_sign(run)},
         "Warnings": {str(i + 1): w for i, w in enumerate(run.warnings)} or {"-": "none"},
         "Timing": {"diagnose wall time [s]": f"{seconds:.2f}"},
     }}
@@ -223,16 +237,19 @@ def write_report(out: Path, naming: Naming, realised: Realisation, seconds: floa
     y, held = ctx.y, nm.held
     diagnosis = diagnosis_record(nm, realised)
     write_diagnosis(out / "diagnosis.json", diagnosis)
-    write_fit(out / "fit.csv", run.time[held], y[held], realised.baseline[held],
-              realised.augmented[held])
+    sign = run.channel_sign  # back to the record's own convention
+    write_fit(out / "fit.csv", run.time[held], sign * y[held], sign * realised.baseline[held],
+              sign * realised.augmented[held])
     signal_name = (CANDIDATES[nm.effect].signal if nm.winner is not None
                    else max(nm.where["explained"], key=nm.where["explained"].get))
     signal = locate.signals(ctx)[signal_name]
     images = [
-        plots.plot_comparison(out / "measured_vs_models.png", run.time, y, realised.baseline,
-                              realised.augmented, held, run.channel, nm.effect),
+        plots.plot_comparison(out / "measured_vs_models.png", run.time, sign * y,
+                              sign * realised.baseline, sign * realised.augmented, held,
+                              run.channel, nm.effect),
         plots.plot_residual(out / f"residual_vs_{signal_name}.png", signal, signal_name,
-                            UNITS[signal_name], y - realised.baseline, y - realised.augmented,
+                            UNITS[signal_name], sign * (y - realised.baseline),
+                            sign * (y - realised.augmented),
                             held, nm.effect),
         plots.plot_ranking(out / "candidate_ranking.png", diagnosis["candidates"],
                            diagnosis["gap_before"], nm.noise),

@@ -24,6 +24,9 @@ VOCABULARY = {
     "vertical_displacement": "m", "vertical_acceleration": "m/s2",
 }
 GUIDEWAY_TYPES = ("roller", "ball")
+#: conventions of a friction_force channel: the force resisting the motion (opposite to
+#: feed_velocity), or the force a sensor feels (along the motion); the workflow works along it
+FRICTION_SIGNS = ("opposes_motion", "along_motion")
 #: [model] key -> component name -> {section: keys it needs}
 COMPONENTS = {
     "friction": {
@@ -59,6 +62,28 @@ class MeasuredRun:
     sections: dict = field(default_factory=dict)  # guideway, lubricant, surface, load tables
     description: str = ""
     warnings: list = field(default_factory=list)
+    friction_sign: str | None = None  # [channels] friction_sign as stated, or as found
+    friction_sign_stated: bool = False
+
+    @property
+    def channel_sign(self) -> float:
+        """-1 where the compared channel was turned to the workflow's convention (friction_force
+        opposing the motion), else 1: the factor back to the record's own values."""
+        return -1.0 if self.friction_sign == "opposes_motion" else 1.0
+
+    def orient_friction(self, velocity) -> None:
+        """Turn a friction_force channel along the motion, by the stated [channels]
+        friction_sign or, without it, by the sign the data show: the level of friction_force
+        along sgn(v) over the samples moving faster than a tenth of the top speed."""
+        if "friction_force" not in self.columns:
+            return
+        if self.friction_sign is None:
+            v = np.asarray(velocity, dtype=float)
+            moving = np.abs(v) > 0.1 * np.max(np.abs(v))
+            along = float(np.mean(self.columns["friction_force"][moving] * np.sign(v[moving])))
+            self.friction_sign = "along_motion" if along >= 0.0 else "opposes_motion"
+        if self.friction_sign == "opposes_motion":
+            self.columns["friction_force"] = -self.columns["friction_force"]
 
     @property
     def channel(self) -> str:
@@ -158,6 +183,14 @@ def read_rig(path: Path) -> dict:
             if name not in VOCABULARY or name == "time":
                 raise ValueError(f"{source}: [channels] key '{key}': {name!r} is not a channel "
                                  f"of the format (known: {', '.join(list(VOCABULARY)[1:])})")
+    sign = channels.get("friction_sign")
+    if sign is not None:
+        if sign not in FRICTION_SIGNS:
+            raise ValueError(f"{source}: [channels] key 'friction_sign' must be one of "
+                             f"{FRICTION_SIGNS}, got {sign!r}")
+        if "friction_force" not in channels["inputs"] + channels["outputs"]:
+            raise ValueError(f"{source}: [channels] key 'friction_sign' goes with a "
+                             f"friction_force channel, and none is listed")
     return {"rig": rig, "sections": sections, "model": dict(model), "channels": channels}
 
 
@@ -238,4 +271,5 @@ def load_run(run_dir: str | Path) -> MeasuredRun:
                        model=rig["model"], inputs=list(rig["channels"]["inputs"]),
                        outputs=list(rig["channels"]["outputs"]), time=time, columns=columns,
                        sections=rig["sections"], description=str(rig["rig"].get("description", "")),
-                       warnings=notes)
+                       warnings=notes, friction_sign=rig["channels"].get("friction_sign"),
+                       friction_sign_stated="friction_sign" in rig["channels"])

@@ -107,6 +107,7 @@ MAX_SIZE = 3.0
 _FORMATS = {
     "time": "%.7f", "feed_position": "%.9f", "feed_velocity": "%.8f",
     "feed_acceleration": "%.6f", "normal_force": "%.5f", "drive_force": "%.6f",
+    "friction_force": "%.6f",
 }
 
 
