@@ -217,6 +217,7 @@ CONTRACT = {
                            "F_normal": ("input", "N"), "F_side": ("input", "N"),
                            "M_yaw": ("input", "N.m"), "F_friction": ("output", "N"),
                            "contact_force": ("output", "N"), "friction_loss": ("output", "W")},
+    "ForceTable": {"F": ("output", "N")},
     "Wear": {"F_load": ("input", "N"), "distance": ("input", "m"),
              "preload_deformation": ("output", "m"), "preload": ("output", "N"),
              "wear_depth": ("output", "m"), "vertical_displacement": ("output", "m")},

@@ -18,7 +18,8 @@ def _save(fig, path: Path) -> Path:
     return path
 
 
-def plot_comparison(path, time, measured, baseline, augmented, held, channel, effect) -> Path:
+def plot_comparison(path, time, measured, baseline, augmented, held, channel, effect,
+                    unit: str = "N") -> Path:
     """Measured vs baseline vs augmented over the record and in a zoom on one held-out block."""
     fig, axes = plt.subplots(2, 1, figsize=(10, 6.5))
     block = np.flatnonzero(held)
@@ -28,7 +29,7 @@ def plot_comparison(path, time, measured, baseline, augmented, held, channel, ef
         if effect not in ("none", "unknown"):
             ax.plot(time[sel], augmented[sel], lw=1, label=f"+ {effect} (co-simulation)")
         ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"{channel} [N]")
+        ax.set_ylabel(f"{channel} [{unit}]")
     axes[0].set_title("whole record")
     axes[1].set_title("zoom on held-out samples")
     axes[0].legend(loc="upper right", fontsize=8)
@@ -69,4 +70,28 @@ def plot_ranking(path, candidates, gap_before, noise) -> Path:
     axes[1].set_xlabel("held-out gap (range-normalised RMS)")
     axes[1].invert_yaxis()
     axes[1].legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_spectra(path, spectra: dict, channel, unit, marks: dict) -> Path:
+    """Amplitude spectra of the measured, baseline and augmented responses (``spectra``: label
+    -> (f [Hz], amplitude)) on a log scale, with vertical lines at ``marks`` (label -> f [Hz]):
+    a film shows at the feed frequency and its harmonics, a preload or a mass in the natural
+    frequency."""
+    fig, axes = plt.subplots(2, 1, figsize=(10, 7))
+    f_high = 2.5 * max([f for f in marks.values() if f] or [1e3])
+    f_feed = min([f for f in marks.values() if f] or [10.0])
+    for ax, top in ((axes[0], f_high), (axes[1], 12 * f_feed)):
+        for (label, (f, amplitude)), style in zip(spectra.items(), ("-", "--", ":")):
+            keep = (f > 0) & (f <= top)
+            ax.semilogy(f[keep], amplitude[keep], style, lw=1, label=label)
+        for label, f in marks.items():
+            if f and f <= top:
+                ax.axvline(f, color="0.6", lw=0.8)
+                ax.text(f, ax.get_ylim()[1], f" {label}", fontsize=7, va="top", rotation=90)
+        ax.set_xlabel("frequency [Hz]")
+        ax.set_ylabel(f"{channel} amplitude [{unit}]")
+    axes[0].set_title("whole band")
+    axes[1].set_title("feed frequency and its harmonics")
+    axes[0].legend(fontsize=8)
     return _save(fig, path)

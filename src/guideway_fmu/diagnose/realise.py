@@ -23,9 +23,9 @@ from .decide import Naming
 RIG_FMUS = ("FeedKinematics", "HorizontalRig")
 
 
-def write_replay(ctx: Context, path: Path) -> Path:
-    """The motion the model is driven with, as the FeedKinematics replay table."""
-    m = ctx.motion
+def write_replay(m, path: Path) -> Path:
+    """The motion ``m`` (signals.Motion) the model is driven with, as the FeedKinematics replay
+    table."""
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["time", "feed_position", "feed_velocity", "feed_acceleration"])
@@ -90,7 +90,7 @@ def realise(naming: Naming, out: Path, fmu_dir: Path) -> Realisation:
     ctx, winner = naming.ctx, naming.winner
     model = winner or naming.baseline
     build.ensure(fmu_dir, [*RIG_FMUS, model.fmu])
-    replay = write_replay(ctx, out / "replay.csv")
+    replay = write_replay(ctx.motion, out / "replay.csv")
     toml = write_scenario(
         ctx, model, out / ("augmented.toml" if winner else "baseline.toml"), replay, fmu_dir,
         f"augmented_{naming.effect}" if winner else "baseline",

@@ -231,6 +231,74 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
     }}
 
 
+def vertical_record(naming, realised) -> dict:
+    """The content of diagnosis.json for a vertical run."""
+    before, after = realised.gaps(naming)
+    return {
+        "format": FORMAT, "missing_effect": naming.effect,
+        "confidence": round(naming.confidence, 6), "channel": naming.run.channel,
+        "gap_before": round(before, 8), "gap_after": round(after, 8),
+        "noise_floor": round(naming.noise, 8),
+        "candidates": [{"effect": f.effect, "gap_after": round(g, 8), "score": round(float(s), 3),
+                        "parameters": {k: (round(float(v), 12) if isinstance(v, (float, np.floating))
+                                           else v) for k, v in f.parameters.items()}}
+                       for s, f, g in naming.ranked],
+        "equation": naming.equation,
+    }
+
+
+def write_vertical_report(out: Path, naming, realised, seconds: float) -> dict:
+    """diagnosis.json, fit.csv, the plots (time, spectra, ranking) and report.html of a
+    vertical run into ``out``; returns the diagnosis."""
+    nm, rig, y, held = naming, naming.rig, naming.y, naming.held
+    diagnosis = vertical_record(nm, realised)
+    write_diagnosis(out / "diagnosis.json", diagnosis)
+    time = nm.run.time
+    write_fit(out / "fit.csv", time[held], y[held], realised.baseline[held],
+              realised.augmented[held])
+    spectra = {"measured": rig.spectrum(y), "baseline": rig.spectrum(realised.baseline)}
+    if nm.winner is not None:
+        spectra[f"+ {nm.effect}"] = rig.spectrum(realised.augmented)
+    feed = rig.spectrum(rig.motion.v)
+    marks = {"feed": float(feed[0][1 + np.argmax(feed[1][1:])]),
+             "f_n baseline": rig.natural_frequency(rig.base),
+             "free vibration measured": rig.measured_natural_frequency(y)}
+    images = [
+        plots.plot_comparison(out / "measured_vs_models.png", time, y, realised.baseline,
+                              realised.augmented, held, nm.run.channel, nm.effect, rig.unit),
+        plots.plot_spectra(out / "spectra.png", spectra, nm.run.channel, rig.unit, marks),
+        plots.plot_ranking(out / "candidate_ranking.png", diagnosis["candidates"],
+                           diagnosis["gap_before"], nm.noise),
+    ]
+    notes = {"run": str(nm.run.path), "sections": {
+        "Samples": {"samples": time.size, "fit samples": int(nm.fit_mask.sum()),
+                    "held-out samples (gap, fit.csv)": int(held.sum()),
+                    "split": f"{locate.blocks(time.size)} equal blocks, every third held out"},
+        "Model": {"system": "FeedKinematics (replay of the measured motion) -> contact u; "
+                            "ForceTable (normal force) -> VerticalDynamics.F_ext; "
+                            "VerticalDynamics <-> contact, stabilised coupling",
+                  "baseline": f"{rig.base} (only the offset fitted: {nm.baseline.offset:.6g} "
+                              f"{rig.unit})",
+                  "start": "static equilibrium under gravity and the first normal force, the "
+                           "film steady at the first feed velocity",
+                  "fits": f"the monolithic reference at rtol {rig.rtol:.3g}; candidates by one "
+                          f"parameter each, started where the model's free vibration matches "
+                          f"the record's",
+                  "augmented": f"{nm.winner.parameters}" if nm.winner else "= baseline",
+                  "scenario": f"{realised.scenario.name} (run it with guideway-fmu run)",
+                  "co-simulation": f"wall time {realised.wall_time:.2f} s; largest deviation "
+                                   f"from the reference {realised.agreement:.3g} of the range"},
+        "Gap and noise": {"baseline gap": f"{nm.gap_base:.6g}", "noise floor": f"{nm.noise:.6g}",
+                          "significant": str(nm.significant),
+                          "residual peaks [Hz]": ", ".join(f"{f:.4g}" for f in nm.frequencies) or "-",
+                          "equation (unknown only)": nm.equation or "-"},
+        "Warnings": {str(i + 1): w for i, w in enumerate(nm.run.warnings)} or {"-": "none"},
+        "Timing": {"diagnose wall time [s]": f"{seconds:.2f}"},
+    }}
+    write_html(out / "report.html", diagnosis, notes, images)
+    return diagnosis
+
+
 def write_report(out: Path, naming: Naming, realised: Realisation, seconds: float) -> dict:
     """diagnosis.json, fit.csv, the plots and report.html into ``out``; returns the diagnosis."""
     nm, run, ctx = naming, naming.run, naming.ctx

@@ -263,10 +263,14 @@ def load_run(run_dir: str | Path) -> MeasuredRun:
         if channel not in ("drive_force", "friction_force"):
             raise ValueError(f"{source}: [channels] key 'outputs': a horizontal_drive rig is "
                              f"compared on 'drive_force' or 'friction_force', got {channel!r}")
-        motion = [c for c in ("feed_position", "feed_velocity") if c in rig["channels"]["inputs"]]
-        if not motion:
-            raise ValueError(f"{source}: [channels] key 'inputs' must contain 'feed_position' or "
-                             f"'feed_velocity' (the motion that drives the model)")
+    elif channel not in ("vertical_displacement", "vertical_acceleration"):
+        raise ValueError(f"{source}: [channels] key 'outputs': a vertical_response rig is "
+                         f"compared on 'vertical_displacement' or 'vertical_acceleration', got "
+                         f"{channel!r}")
+    motion = [c for c in ("feed_position", "feed_velocity") if c in rig["channels"]["inputs"]]
+    if not motion:
+        raise ValueError(f"{source}: [channels] key 'inputs' must contain 'feed_position' or "
+                         f"'feed_velocity' (the motion that drives the model)")
     return MeasuredRun(path=run_dir, kind=kind, moving_mass=rig["rig"]["moving_mass"],
                        model=rig["model"], inputs=list(rig["channels"]["inputs"]),
                        outputs=list(rig["channels"]["outputs"]), time=time, columns=columns,

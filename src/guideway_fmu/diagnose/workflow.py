@@ -2,7 +2,7 @@
 misses (decide.py: load and check the run, derive the motion, calibrate the baseline, locate the
 gap, fit and score the candidates, name one), realise the named model as a scenario run
 through the FMUs (realise.py), and report (report.py: diagnosis.json, fit.csv, plots,
-report.html)."""
+report.html). Vertical responses take the same steps in vertical.py."""
 from __future__ import annotations
 
 import time as clock
@@ -10,7 +10,9 @@ from pathlib import Path
 
 from .decide import decide
 from .realise import realise
-from .report import write_report
+from .report import write_report, write_vertical_report
+from .run_io import load_run
+from .vertical import decide_vertical, realise_vertical
 
 
 def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
@@ -21,8 +23,15 @@ def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
     file and the row, column, section or key) for a run that cannot be used.
     """
     started = clock.perf_counter()
-    naming = decide(run_dir)
     out = Path(out_dir)
+    fmus = Path(fmu_dir) if fmu_dir is not None else out / "fmus"
+    run = load_run(run_dir)
+    if run.kind == "vertical_response":
+        out.mkdir(parents=True, exist_ok=True)
+        naming = decide_vertical(run, out / "model", fmus)
+        realised = realise_vertical(naming, out)
+        return write_vertical_report(out, naming, realised, clock.perf_counter() - started)
+    naming = decide(run_dir)
     out.mkdir(parents=True, exist_ok=True)
-    realised = realise(naming, out, Path(fmu_dir) if fmu_dir is not None else out / "fmus")
+    realised = realise(naming, out, fmus)
     return write_report(out, naming, realised, clock.perf_counter() - started)

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import math
 
 import numpy as np
+from scipy.optimize import brentq
 
 from . import checks
 from .film import (S_MAX, S_MIN, SQUEEZE_GAIN, SQUEEZE_WEIGHT, LineContact, film_law, film_rate,
@@ -166,6 +167,23 @@ def quasi_static_stiffness(g: Guideway, y, u=0.0, lubricated: bool = True, state
 
     du, dl = g._geometric_approach(y)
     return 2 * g.rollers_per_groove * s * s * (row_gain(fu, hu, du) + row_gain(fl, hl, dl))
+
+
+def static_displacement(g: Guideway, load: float, u: float = 0.0,
+                        lubricated: bool = True) -> float:
+    """y [m] at which the rows carry the vertical load [N] (positive along y) in the steady state
+    of :func:`quasi_static_state` at the feed velocity u [m/s]: a body at rest in static
+    equilibrium, its films steady."""
+    def excess(y):
+        return float(net_force(g, *quasi_static_state(g, y, u, lubricated)[:2])) - load
+
+    reach = g.delta0 / np.sin(g.contact_angle)
+    while excess(reach) < 0.0:
+        reach *= 2.0
+    low = -reach
+    while excess(low) > 0.0:
+        low *= 2.0
+    return float(brentq(excess, low, reach, xtol=1e-18, rtol=1e-14))
 
 
 def film_rates(g: Guideway, y, h_upper, h_lower, u):

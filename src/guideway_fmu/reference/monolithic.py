@@ -52,12 +52,15 @@ def check(system) -> None:
     _Assembly(system)
 
 
-def simulate(system, times=None, rtol: float = 1e-10, method: str | None = None) -> Reference:
+def simulate(system, times=None, rtol: float = 1e-10, method: str | None = None,
+             columns=None) -> Reference:
     """Integrate ``system`` (a checked ``cosim.system.System``) from experiment.start.
 
     ``times`` [s], increasing and not before the start, are the output times; by default the
     macro-step grid start, start + step, ..., stop. ``method`` is a ``solve_ivp`` method; by
     default LSODA, or RK45 when a model's derivatives jump (``ContinuousModel.smooth``).
+    ``columns`` ("<instance>.<variable>") limits the outputs evaluated to those (and what they
+    need): a fit that reads one channel skips the rest.
     Raises ValueError naming the component for a component or a wiring that the reference
     cannot model, RuntimeError when the integration fails.
     """
@@ -78,9 +81,12 @@ def simulate(system, times=None, rtol: float = 1e-10, method: str | None = None)
     wall = time.perf_counter() - t0
     if not sol.success:
         raise RuntimeError(f"{system.name}: {method} failed at rtol {rtol}: {sol.message}")
-    columns = model.outputs(sol.t, sol.y)
-    units = {k: system.unit(*k.split(".", 1)) for k in columns}
-    return Reference(sol.t, columns, units, wall, int(sol.nfev), method, rtol)
+    out = model.outputs(sol.t, sol.y, None if columns is None else
+                        {name.split(".", 1)[0] for name in columns})
+    if columns is not None:
+        out = {name: out[name] for name in columns}
+    units = {k: system.unit(*k.split(".", 1)) for k in out}
+    return Reference(sol.t, out, units, wall, int(sol.nfev), method, rtol)
 
 
 # -- assembling the system ---------------------------------------------------------------------
@@ -231,9 +237,12 @@ class _Assembly:
                 rates[b.offset: b.offset + b.size] = b.model.derivatives(t, state, inputs)
         return rates
 
-    def outputs(self, t: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
-        """Every output of every model at the times t [s], in the system's order."""
-        rows = [self._outputs(float(ti), states[:, i].tolist(), self.order)
+    def outputs(self, t: np.ndarray, states: np.ndarray, blocks=None) -> dict[str, np.ndarray]:
+        """Every output of every model (or of the ``blocks`` named, evaluated with what they
+        read) at the times t [s], in the system's order."""
+        names = self.order if blocks is None else [
+            n for n in self.order if n in set(blocks) | set(self._upstream(list(blocks)))]
+        rows = [self._outputs(float(ti), states[:, i].tolist(), names)
                 for i, ti in enumerate(t)]
         return {f"{name}.{k}": np.array([row[name][k] for row in rows], dtype=float)
-                for name in self.blocks for k in rows[0][name]}
+                for name in names for k in rows[0][name]}

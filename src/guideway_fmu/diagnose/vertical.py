@@ -1,0 +1,494 @@
+"""The discrepancy workflow for vertical responses (docs/measured-run.md, "For vertical runs").
+
+**The model** is the vertical system of FMUs wired as the paper scenarios: FeedKinematics (the
+measured motion replayed) -> the contact's feed velocity; ForceTable (the measured normal
+force) -> VerticalDynamics.F_ext; VerticalDynamics <-> the contact named in [model] (dry_hertz:
+ContactDryHertz, ehl: ContactEHL, whose film follows eq. 4 with its squeeze term), with the
+contact's tangent and force law handed to the carriage. What the format fixes, mapped to it:
+
+* the moving mass is VerticalDynamics' mass, gravity along y (along normal_force);
+* each element carries preload / (rows x elements_per_row) along its normal at rest; the
+  contact FMUs share their F0 among 4 N rollers, so F0 = 4 preload / rows;
+* rollers follow Palmgren's law with roller_length; the lubricant's viscosity and
+  pressure-viscosity coefficient come from [lubricant], E' from reduced_modulus;
+* the record starts at rest in static equilibrium under gravity and the first normal force, the
+  film steady at the first feed velocity (VerticalDynamics.y_start);
+* the compared channel is the carriage's y (vertical_displacement) or its kinematic y''
+  (vertical_acceleration), plus a constant offset: the baseline's only calibration.
+
+Ball guides are refused: the contact FMUs model roller rows.
+
+**The decision** (steps 1-4) simulates each model with the monolithic reference on the sample
+times. Every candidate changes one physical parameter, fitted on the fit samples by Gauss-Newton
+steps with a secant slope (a handful of simulations) with the offset solved alongside:
+
+* ``lubricant_film`` (a dry baseline only): the EHL contact, its film law scaled through the
+  lubricant's viscosity (the film grows as its 0.7th power);
+* ``preload_loss``: the preload times a factor in (0, 1];
+* ``unmodeled_mass``: an extra mass.
+
+Scores are BIC improvements on the held-out samples, and the naming follows the horizontal
+workflow's rules (decide.py: significance, SCORE_MIN, EXPLAINED, UNRESOLVED), with a sparse law
+in the feed velocity, the normal force and the residual's peak frequencies for ``unknown``.
+**Realisation** co-simulates the named model (or the baseline) through the FMUs with the
+stabilised coupling at a macro step of at most COSIM_STEP.
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from ..components import build
+from ..cosim import master, system as cosim_system
+from ..physics import guideway as gw
+from ..physics import guideway_contact
+from ..physics.carriage import LENGTH_SCALE, STANDARD_GRAVITY
+from ..physics.film import LineContact
+from . import locate, regression
+from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, SIGNIFICANT_ERRORS, UNRESOLVED, \
+    _bic, _confidence
+from .realise import write_replay
+from .run_io import MeasuredRun
+from .signals import derive_motion
+
+CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
+FMUS = ("FeedKinematics", "ForceTable", "VerticalDynamics", *CONTACT_FMUS.values())
+CHANNELS = {"vertical_displacement": ("Carriage.y", "m"),
+            "vertical_acceleration": ("Carriage.y_ddot", "m/s2")}
+LAW = ("force_1um", "exponent", "sine", "approach_upper", "approach_lower", "rate_upper",
+       "rate_lower")  # the contact's force law over a step, handed to the carriage
+COSIM_STEP = 4e-6  # s, largest macro step of the realisation (the paper scenarios' coarsest)
+SIMULATIONS = 6  # most simulations a candidate's fit takes
+STEP, TRUST = 0.05, 0.7  # the fit's first step and its largest, in its parameter (fit_candidate)
+TUNED_SPAN = 0.003  # half-width of the search around the value matching the natural frequency
+FREQUENCY_STEPS = 4  # secant steps matching the simulated free-vibration frequency
+RESOLUTION = 1e-4  # the reference resolves the compared channel to this share of its range ...
+MAX_RTOL = 1e-7  # ... and keeps the phase of an undamped vibration over hundreds of periods
+
+
+@dataclass(frozen=True)
+class Setting:
+    """A vertical model's physical parameters: moving mass [kg], contact, the contact FMU's F0
+    [N], lubricant viscosity [Pa s] and pressure-viscosity coefficient [1/Pa]."""
+
+    mass: float
+    contact: str
+    preload: float
+    viscosity: float
+    pressure_viscosity: float
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One effect: the parameter it fits (its start and bounds, on a log scale or not), how it
+    changes a setting, and whether it applies to the baseline."""
+
+    effect: str
+    parameter: str
+    start: float
+    bounds: tuple
+    log: bool
+    change: object  # (Setting, value) -> Setting
+
+    def applies(self, base: Setting) -> bool:
+        return self.effect != "lubricant_film" or base.contact == "dry_hertz"
+
+
+def candidates(base: Setting) -> list[Candidate]:
+    """The vertical candidates for the baseline setting."""
+    return [c for c in (
+        Candidate("lubricant_film", "viscosity_factor", 1.0, (1e-3, 1e3), True,
+                  lambda s, v: dataclasses.replace(s, contact="ehl",
+                                                   viscosity=base.viscosity * v)),
+        Candidate("preload_loss", "preload_factor", 1.0, (0.02, 1.0), True,
+                  lambda s, v: dataclasses.replace(s, preload=base.preload * v)),
+        Candidate("unmodeled_mass", "extra_mass", 0.0,
+                  (-0.5 * base.mass, 5.0 * base.mass), False,
+                  lambda s, v: dataclasses.replace(s, mass=base.mass + v)),
+    ) if c.applies(base)]
+
+
+class VerticalRig:
+    """A vertical run's rig: the motion and load tables its models are driven with (written
+    into ``folder``), the baseline setting, and the models' systems and predictions."""
+
+    def __init__(self, run: MeasuredRun, folder: Path, fmu_dir: Path):
+        source = run.path / "rig.toml"
+        guideway = run.sections.get("guideway", {})
+        if guideway.get("type") == "ball":
+            raise ValueError(f"{source}: [guideway] key 'type': vertical runs of ball guides are "
+                             f"not supported yet (the contact FMUs model roller rows)")
+        if "contact" not in run.model:
+            raise ValueError(f"{source}: [model] key 'contact' is missing: a vertical_response "
+                             f"rig names its contact ('dry_hertz' or 'ehl')")
+        motion_channels = {c: run.columns[c] for c in ("feed_position", "feed_velocity")
+                           if c in run.inputs}
+        self.run, self.fmu_dir = run, Path(fmu_dir)
+        self.motion = derive_motion(run.time, motion_channels, None)
+        self.folder = Path(folder)
+        self.folder.mkdir(parents=True, exist_ok=True)
+        self.replay = write_replay(self.motion, self.folder / "replay.csv")
+        normal = (run.columns["normal_force"] if "normal_force" in run.columns
+                  else np.full(run.time.size, run.normal_force()))
+        self.normal = np.asarray(normal, dtype=float)
+        self.load = self.folder / "load.csv"
+        with self.load.open("w", newline="") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(["time", "normal_force"])
+            writer.writerows(np.column_stack([run.time, self.normal]).tolist())
+        lubricant = run.sections.get("lubricant", {})
+        self.geometry = {
+            "rollers_per_groove": int(guideway["elements_per_row"]),
+            "contact_angle": math.radians(float(guideway["contact_angle_deg"])),
+            "roller_radius": float(guideway["element_radius"]),
+            "roller_length": float(guideway["roller_length"])}
+        self.e_reduced = float(guideway.get("reduced_modulus", 2.0e11))
+        self.base = Setting(
+            run.moving_mass, run.model["contact"],
+            4.0 * float(guideway["preload"]) / int(guideway.get("rows", 4)),
+            float(lubricant.get("viscosity", LineContact.viscosity)),
+            float(lubricant.get("pressure_viscosity", LineContact.pressure_viscosity)))
+        self.column, self.unit = CHANNELS[run.channel]
+        y = np.asarray(run.columns[run.channel], dtype=float)
+        span = float(np.ptp(y)) if run.channel == "vertical_displacement" else (
+            float(np.ptp(y)) / (2 * math.pi * 5e3) ** 2)  # an acceleration's displacement scale
+        self.rtol = float(np.clip(RESOLUTION * span / LENGTH_SCALE, 1e-10, MAX_RTOL))
+        self.cache: dict = {}
+
+    def contact_parameters(self, setting: Setting) -> dict:
+        parameters = {**self.geometry, "preload": setting.preload}
+        if setting.contact == "ehl":
+            parameters.update(viscosity=setting.viscosity, e_reduced=self.e_reduced,
+                              pressure_viscosity=setting.pressure_viscosity)
+        return parameters
+
+    def start(self, setting: Setting) -> float:
+        """y [m] of the static equilibrium under gravity and the first normal force, the film
+        steady at the first feed velocity."""
+        return gw.static_displacement(self.guideway(setting),
+                                      setting.mass * STANDARD_GRAVITY + float(self.normal[0]),
+                                      float(self.motion.v[0]), setting.contact == "ehl")
+
+    def guideway(self, setting: Setting) -> gw.Guideway:
+        return guideway_contact.from_parameters(
+            **self.contact_parameters(setting), roller_load_1um=0.0, damping=0.0,
+            lubricated=setting.contact == "ehl").guideway
+
+    def natural_frequency(self, setting: Setting) -> float:
+        """f_n [Hz] of the model linearised at its start: sqrt(K / M) / 2 pi, K the rows'
+        quasi-static stiffness there (the film's compliance included)."""
+        k = gw.quasi_static_stiffness(self.guideway(setting), self.start(setting),
+                                      float(self.motion.v[0]), setting.contact == "ehl")
+        return float(np.sqrt(k / setting.mass) / (2 * math.pi))
+
+    def spectrum(self, values, pad: int = 1) -> tuple[np.ndarray, np.ndarray]:
+        """(f [Hz], amplitude) of ``values`` at the samples, resampled to their median step,
+        Hann-windowed, the transform zero-padded ``pad`` times (a finer grid of frequencies)."""
+        t = self.run.time
+        step = float(np.median(np.diff(t)))
+        grid = t[0] + step * np.arange(int((t[-1] - t[0]) / step) + 1)
+        v = np.interp(grid, t, values)
+        window = np.hanning(v.size)
+        amplitude = np.abs(np.fft.rfft((v - v.mean()) * window, pad * v.size)) * 2 / window.sum()
+        return np.fft.rfftfreq(pad * v.size, step), amplitude
+
+    def measured_natural_frequency(self, y) -> float | None:
+        """The record's free-vibration peak [Hz]: the largest of the measured channel's spectrum
+        (zero-padded 16 times, the peak's log amplitude fitted by a parabola) within a factor 3
+        of the baseline's f_n, away (2 %, at least twice the window's main lobe) from the normal
+        force's dominant frequency and its multiples of a half (the rows' nonlinearity makes
+        harmonics and half-harmonics of it);
+        None where no peak stands out (10 times the median there)."""
+        f_base = self.natural_frequency(self.base)
+        f, amplitude = self.spectrum(y, 16)
+        _, load = self.spectrum(self.normal, 16)
+        near = (f > f_base / 3) & (f < 3 * f_base)
+        f_load = f[np.argmax(load[1:]) + 1]
+        lobe = 4.0 / (self.run.time[-1] - self.run.time[0])  # twice a Hann window's main lobe
+        for k in range(1, 13):
+            near &= np.abs(f - 0.5 * k * f_load) > max(0.02 * 0.5 * k * f_load, lobe)
+        if not np.any(near):
+            return None
+        best = np.flatnonzero(near)[np.argmax(amplitude[near])]
+        if not amplitude[best] > 10 * np.median(amplitude[near]) or best in (0, f.size - 1):
+            return None
+        a, b, c = np.log(amplitude[best - 1: best + 2])
+        return float(f[best] + 0.5 * (a - c) / (a - 2 * b + c) * (f[1] - f[0]))
+
+    def system(self, setting: Setting, name: str = "vertical", step: float | None = None):
+        """The system of FMUs of ``setting`` (cosim/system.py), at the macro step ``step`` [s]
+        (default: at most COSIM_STEP, dividing the median sample interval)."""
+        t = self.run.time
+        if step is None:
+            interval = float(np.median(np.diff(t)))
+            step = interval / max(1, math.ceil(interval / COSIM_STEP))
+        fmus = self.fmu_dir.resolve()
+        contact = CONTACT_FMUS[setting.contact]
+        b = cosim_system.Builder(name, f"{self.run.path.name}: {name}").experiment(
+            start=float(t[0]), stop=float(t[-1]), step=float(step), algorithm="stabilised")
+        b.component("Feed", fmus / "FeedKinematics.fmu", profile="replay",
+                    table_file=str(self.replay.resolve()))
+        b.component("Load", fmus / "ForceTable.fmu", table_file=str(self.load.resolve()),
+                    column="normal_force")
+        b.component("Carriage", fmus / "VerticalDynamics.fmu", mass=setting.mass,
+                    y_start=self.start(setting))
+        b.component("Contact", fmus / f"{contact}.fmu", **self.contact_parameters(setting))
+        for source, target in (("Feed.u", "Contact.u"), ("Carriage.y", "Contact.y"),
+                               ("Carriage.y_dot", "Contact.y_dot"),
+                               ("Contact.F_contact", "Carriage.F_contact"),
+                               ("Load.F", "Carriage.F_ext")):
+            b.connect(source, target)
+        b.tangent("Contact.F_contact", "Contact.y", "Contact.K_contact", "Carriage.K_contact",
+                  "Contact.y_dot", "Contact.C_contact", "Carriage.C_contact",
+                  model={f"law_{n}": f"Carriage.law_{n}" for n in LAW},
+                  settings={"interpolate_inputs": True} if setting.contact == "ehl" else None)
+        b.record([self.column, "Carriage.y", "Contact.F_upper", "Contact.h_upper", "Feed.u"])
+        b.plots(time=[self.column, "Contact.F_upper"], spectrum=[self.column])
+        return b.system()
+
+    def predict(self, setting: Setting) -> np.ndarray:
+        """The compared channel of ``setting`` at the sample times, without offset (the
+        monolithic reference; cached)."""
+        if setting not in self.cache:
+            from ..reference import monolithic
+            ref = monolithic.simulate(self.system(setting), times=self.run.time,
+                                      rtol=self.rtol, columns=[self.column])
+            self.cache[setting] = ref.columns[self.column]
+        return self.cache[setting]
+
+
+@dataclass
+class VerticalFit:
+    """A fitted vertical model: its setting, prediction (offset included), offset, physical
+    parameters and number of fitted numbers."""
+
+    effect: str
+    setting: Setting
+    prediction: np.ndarray
+    offset: float
+    parameters: dict
+    n_parameters: int
+
+
+def _offset(y, f, mask) -> float:
+    return float(np.mean((y - f)[mask]))
+
+
+def fit_baseline(rig: VerticalRig, y, mask) -> VerticalFit:
+    f = rig.predict(rig.base)
+    c = _offset(y, f, mask)
+    return VerticalFit("none", rig.base, f + c, c, {"offset": c}, 1)
+
+
+def tuned_start(rig: VerticalRig, candidate: Candidate, y) -> float | None:
+    """Where the candidate's fit starts: for a mass or a preload, the value that gives the
+    model the record's free-vibration frequency (the response is far from linear in them
+    near a resonance: a local fit from the stated value falls into the nearest dip); else,
+    or without a clear peak, None."""
+    measured = rig.measured_natural_frequency(y)
+    if measured is None or candidate.effect not in ("unmodeled_mass", "preload_loss"):
+        return None
+    simulated = rig.measured_natural_frequency(rig.predict(rig.base))
+    # the linearised frequency scaled by the baseline's simulated over its linearised one: the
+    # rows stiffen and soften over a large vibration, which shifts the free vibration
+    shift = 1.0 if simulated is None else simulated / rig.natural_frequency(rig.base)
+    lo, hi = candidate.bounds
+
+    def mismatch(value):
+        return shift * rig.natural_frequency(candidate.change(rig.base, value)) - measured
+
+    if mismatch(lo) * mismatch(hi) > 0:
+        return None
+    return float(brentq(mismatch, lo, hi, rtol=1e-6))
+
+
+def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFit:
+    """The candidate's parameter q (its log where ``log``, else the extra mass over the stated
+    one) with the offset. Where :func:`tuned_start` finds the record's free-vibration frequency,
+    a bounded scalar search within TUNED_SPAN of it (the residual's basin around the true value
+    is narrow: a free vibration of hundreds of periods dephases within a fraction of a per
+    cent of frequency); else Gauss-Newton, y - f(q) ~ J dq + c with J the secant slope of the
+    two best simulations, each step at most TRUST. At most SIMULATIONS simulations."""
+    lo, hi = candidate.bounds
+    to_q = (lambda v: math.log(v)) if candidate.log else (lambda v: v / rig.base.mass)
+    from_q = (lambda q: math.exp(q)) if candidate.log else (lambda q: q * rig.base.mass)
+    q_lo, q_hi = to_q(lo), to_q(hi)
+    seen = {}
+
+    def evaluate(q):
+        if q not in seen:
+            f = rig.predict(candidate.change(rig.base, from_q(q)))
+            c = _offset(y, f, mask)
+            seen[q] = (q, f, c, float(np.sum((y - f - c)[mask] ** 2)))
+        return seen[q]
+
+    tuned = tuned_start(rig, candidate, y)
+    measured = rig.measured_natural_frequency(y)
+    if tuned is not None:
+        # the simulated free-vibration frequency matched to the measured one (smooth in q,
+        # where the residual is not), by secant steps from the linearised estimate
+        q_a = float(np.clip(to_q(tuned), q_lo, q_hi))
+        q_b = q_a - 0.01 if q_a + 0.01 > q_hi else q_a + 0.01
+        pairs = []
+        for q in (q_a, q_b):
+            peak = rig.measured_natural_frequency(evaluate(q)[1])
+            if peak is not None:
+                pairs.append((q, peak))
+        for _ in range(FREQUENCY_STEPS):
+            if len(pairs) < 2 or pairs[-1][1] == pairs[-2][1]:
+                break
+            (qa, fa), (qb, fb) = pairs[-2:]
+            q = float(np.clip(qb + (measured - fb) * (qb - qa) / (fb - fa), q_lo, q_hi))
+            if abs(q - qb) < 1e-5:
+                break
+            peak = rig.measured_natural_frequency(evaluate(q)[1])
+            if peak is None:
+                break
+            pairs.append((q, peak))
+        q0 = min(seen.values(), key=lambda p: p[3])[0]
+        minimize_scalar(lambda q: evaluate(q)[3], method="bounded",
+                        bounds=(max(q0 - TUNED_SPAN, q_lo), min(q0 + TUNED_SPAN, q_hi)),
+                        options={"maxiter": SIMULATIONS, "xatol": 1e-5})
+    else:
+        start = float(np.clip(to_q(candidate.start), q_lo, q_hi))
+        points = sorted([evaluate(start),
+                         evaluate(start + STEP if start + STEP <= q_hi else start - STEP)],
+                        key=lambda p: p[3])
+        for _ in range(SIMULATIONS - 2):
+            (q1, f1, _, _), (q0, f0, _, _) = points
+            design = np.column_stack([((f1 - f0) / (q1 - q0))[mask], np.ones(int(mask.sum()))])
+            (dq, _), *_ = np.linalg.lstsq(design, (y - f1)[mask], rcond=None)
+            q = float(np.clip(q1 + np.clip(dq, -TRUST, TRUST), q_lo, q_hi))
+            if abs(q - q1) < 1e-3 or abs(q - q0) < 1e-9:
+                break
+            points = sorted(points + [evaluate(q)], key=lambda p: p[3])[:2]
+    q, f, c, _ = min(seen.values(), key=lambda p: p[3])
+    value = from_q(q)
+    setting = candidate.change(rig.base, value)
+    parameters = {candidate.parameter: value, "offset": c}
+    if candidate.effect == "preload_loss":
+        parameters["preload"] = setting.preload * int(rig.run.sections["guideway"].get("rows", 4)) / 4
+    elif candidate.effect == "lubricant_film":
+        parameters["viscosity"] = setting.viscosity
+    return VerticalFit(candidate.effect, setting, f + c, c, parameters, 2)
+
+
+@dataclass
+class VerticalNaming:
+    """Steps 1-4 on a vertical run: the data, the models and the decision."""
+
+    run: MeasuredRun
+    rig: VerticalRig
+    y: np.ndarray
+    fit_mask: np.ndarray
+    held: np.ndarray
+    baseline: VerticalFit
+    noise: float
+    gap_base: float
+    significant: bool
+    ranked: list  # (score, VerticalFit, held-out gap), best first
+    effect: str
+    winner: VerticalFit | None
+    equation: str | None
+    law: np.ndarray | None
+    confidence: float
+    frequencies: list
+
+
+def law_terms(rig: VerticalRig, frequencies) -> dict:
+    """Terms of a sparse law for an unexplained vertical residual, by expression over the channel
+    names: the feed velocity and speed, the normal force, sinusoids at the residual's peaks."""
+    values = {"feed_velocity": rig.motion.v, "normal_force": rig.normal, "time": rig.run.time,
+              "sign": np.sign, "sin": np.sin, "cos": np.cos, "pi": np.pi}
+    terms = ["1", "feed_velocity", "feed_velocity*sign(feed_velocity)", "normal_force"]
+    for f in frequencies:
+        terms += [f"sin(2*pi*{f:.6g}*time)", f"cos(2*pi*{f:.6g}*time)"]
+    return {t: np.broadcast_to(np.asarray(eval(t, {"__builtins__": {}}, values), dtype=float),
+                               rig.run.time.shape) for t in terms}
+
+
+def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNaming:
+    """Steps 1-4 on a vertical_response run (module doc). Raises ValueError naming the file and
+    key for a run it cannot model."""
+    build.ensure(fmu_dir, list(FMUS))
+    rig = VerticalRig(run, folder, fmu_dir)
+    y = np.asarray(run.columns[run.channel], dtype=float)
+    usable = np.ones(y.size, dtype=bool)
+    fit_mask, held = locate.split(y.size, usable)
+    baseline = fit_baseline(rig, y, fit_mask)
+    residual = y - baseline.prediction
+    noise = locate.noise_floor(y, residual, held)
+    gap_base = locate.gap(y, baseline.prediction, held)
+    significant = bool(gap_base > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * held.sum())) * noise)
+    bic_base = _bic(residual, held, baseline.n_parameters)
+    ranked = []
+    for candidate in candidates(rig.base):
+        fitted = fit_candidate(rig, candidate, y, fit_mask)
+        score = bic_base - _bic(y - fitted.prediction, held, fitted.n_parameters)
+        ranked.append((score, fitted, locate.gap(y, fitted.prediction, held)))
+    ranked.sort(key=lambda item: -item[0])
+
+    def share(gap_model):
+        return (gap_base**2 - gap_model**2) / max(gap_base**2 - noise**2, 1e-300)
+
+    frequencies = locate.peak_frequencies(run.time, residual, held)
+    effect, winner, equation, law = "none", None, None, None
+    if significant:
+        score, best, best_gap = ranked[0] if ranked else (-np.inf, None, gap_base)
+        if score > SCORE_MIN and share(best_gap) >= EXPLAINED:
+            effect, winner = best.effect, best
+        else:
+            terms = law_terms(rig, frequencies)
+            coefficients = regression.stlsq(terms, residual, fit_mask)
+            law = sum((c * terms[t] for t, c in coefficients.items()), np.zeros_like(y))
+            law_score = bic_base - _bic(residual - law, held, 1 + len(coefficients))
+            explains = law_score > SCORE_MIN and share(
+                locate.gap(y, baseline.prediction + law, held)) >= LAW_EXPLAINED
+            if explains or gap_base > UNRESOLVED * noise:
+                effect = "unknown"
+                equation = " + ".join(f"{c:.6g}*{t}" if t != "1" else f"{c:.6g}"
+                                      for t, c in coefficients.items()) or "0"
+            else:
+                law = None
+    scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
+    return VerticalNaming(run, rig, y, fit_mask, held, baseline, noise, gap_base, significant,
+                          ranked, effect, winner, equation, law, _confidence(scores, effect),
+                          frequencies)
+
+
+@dataclass
+class VerticalRealisation:
+    """The named model (or the baseline) co-simulated through the FMUs: the compared channel of
+    the baseline and the augmented model at the samples, the scenario and its wall time [s]."""
+
+    baseline: np.ndarray
+    augmented: np.ndarray
+    scenario: Path
+    wall_time: float
+    agreement: float  # largest deviation of the co-simulation from the reference / range
+
+    def gaps(self, naming) -> tuple[float, float]:
+        y, held = naming.y, naming.held
+        return locate.gap(y, self.baseline, held), locate.gap(y, self.augmented, held)
+
+
+def realise_vertical(naming: VerticalNaming, out: Path) -> VerticalRealisation:
+    """Write the named model's scenario (the baseline's for none or unknown) into ``out`` and
+    co-simulate it through the FMUs."""
+    model = naming.winner or naming.baseline
+    name = f"augmented_{naming.effect}" if naming.winner else "baseline"
+    system = naming.rig.system(model.setting, name)
+    path = cosim_system.dump(system, out / f"{'augmented' if naming.winner else 'baseline'}.toml")
+    result = master.simulate(cosim_system.load(path))
+    rec = result.recording
+    cosim = np.interp(naming.run.time, rec.time, rec.columns[naming.rig.column]) + model.offset
+    agreement = float(np.max(np.abs(cosim - model.prediction)) / np.ptp(naming.y))
+    base = naming.baseline.prediction
+    return VerticalRealisation(base, cosim if naming.winner else base, path, result.wall_time,
+                               agreement)
