@@ -3,7 +3,7 @@ independent generator (diagnose/second_truth.py), by effect and by record class,
 never tuned on (steps 1-4 only, no co-simulation).
 
     python benchmarks/diagnose_second_generator.py [--draws 4] [--samples 4000] [--jobs 2]
-                                                   [--seed 50000] [--page docs/diagnosis-second-generator.md]
+                                                   [--seed 60000] [--page docs/diagnosis-second-generator.md]
 
 For every allowed (effect, class) pair, ``--draws`` records of size 1 (the effect's visible part
 8 times the noise) from seed SEED + i. Prints every wrong answer with its reason, then the
@@ -58,7 +58,8 @@ def main(argv=None) -> None:
     parser.add_argument("--draws", type=int, default=4)
     parser.add_argument("--samples", type=int, default=4000)
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--seed", type=int, default=50000)
+    parser.add_argument("--seed", type=int, default=60000,
+                        help="seed of draw 0 (default 60000; 50000-50003 served development)")
     parser.add_argument("--page", default=str(Path(__file__).resolve().parents[1] / "docs" /
                                               "diagnosis-second-generator.md"))
     args = parser.parse_args(argv)

@@ -177,3 +177,41 @@ def test_ball_to_ball_rise_is_read_as_the_contact_angle_deviation_of_a_physical_
     assert named.effect == "ball_to_ball_contact"
     found = named.winner.parameters["contact_angle_deviation_deg"]
     assert degrees / 2 < found < 2 * degrees
+
+
+def test_force_delayed_a_few_samples_is_found_and_undone(tmp_path):
+    # a null record whose drive force lags the motion by 3 samples: spikes of 2 F_c at every
+    # reversal; the workflow finds the 3 samples (hand value), shifts the force back, names none
+    run = truth.simulate("none", np.random.default_rng(31), noise=0.005, n_samples=4000)
+    force = run.columns["drive_force"]
+    run.columns["drive_force"] = np.r_[np.full(3, force[0]), force[:-3]]
+    truth.write_run(tmp_path / "run", run)
+    named = decide.decide(tmp_path / "run")
+    step = float(np.median(np.diff(run.columns["time"])))
+    assert named.run.channel_delay == pytest.approx(3 * step, rel=1e-6)
+    assert named.effect == "none"
+
+
+def test_no_delay_is_taken_from_a_record_without_one(tmp_path):
+    run = truth.simulate("presliding_hysteresis", np.random.default_rng(11), noise=0.01,
+                         n_samples=4000)
+    truth.write_run(tmp_path / "run", run)
+    named = decide.decide(tmp_path / "run")
+    assert named.run.channel_delay == 0.0 and named.effect == "presliding_hysteresis"
+
+
+def test_bursty_timestamps_are_clustered_not_refused(tmp_path):
+    # every fifth sample has a twin 0.2 us later (a burst) with its own sensor noise: the
+    # derivatives on a spline through such pairs would ring; the record is named as before
+    run = truth.simulate("none", np.random.default_rng(32), noise=0.005, n_samples=4000)
+    columns = run.columns
+    twins = np.arange(0, columns["time"].size - 1, 5)
+    order = np.argsort(np.r_[np.arange(columns["time"].size), twins + 0.5])
+    noise = np.random.default_rng(1).standard_normal(twins.size) * run.info.noise_rms
+    burst = {name: np.r_[values, values[twins] + (2e-7 if name == "time" else 0.0)
+                         + (noise if name == "drive_force" else 0.0)][order]
+             for name, values in columns.items()}
+    assert np.min(np.diff(burst["time"])) < 1e-6 < np.median(np.diff(burst["time"]))
+    truth.write_run(tmp_path / "run", replace(run, columns=burst))
+    named = decide.decide(tmp_path / "run")
+    assert named.effect == "none"

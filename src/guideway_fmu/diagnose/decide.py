@@ -50,6 +50,12 @@ INPUT_SHARE = 0.3
 #: happened; records with a return stroke that were looked at: 0.85-0.92)
 SAME_PATH = 0.99
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
+MAX_DELAY = 5  # samples: the longest delay of the compared channel behind the motion sought
+#: a delay is taken where it cuts the baseline's residual sum of squares below this share: a
+#: delay of a few samples cut it to 0.0003-0.23 on the second generator's development draws
+#: (seeds 50000-50003; above 0.1 only on velocity-only records), pre-sliding without a delay to
+#: 0.27-0.52 on the first's (seeds 1000+)
+DELAY_GAIN = 0.15
 
 
 def _bic(residual, mask, k) -> float:
@@ -129,6 +135,29 @@ def motion_of(run: MeasuredRun):
     return derive_motion(run.time, columns, tolerance)
 
 
+def channel_delay(ctx: Context, usable) -> float:
+    """The delay [s] of the compared channel behind the motion: the shift, in whole median
+    sampling intervals up to MAX_DELAY, that lets the baseline (Coulomb level, m a, offset)
+    fit it best, where that cuts the baseline's residual sum of squares below DELAY_GAIN of the
+    unshifted one (a force that switches a few samples after each reversal leaves spikes no
+    friction law describes); else 0. A friction build-up after the reversal (pre-sliding) gains
+    less from a shift, for it follows the displacement, not the time."""
+    t = ctx.motion.time
+    step = float(np.median(np.diff(t)))
+    inner = usable & (t > t[0] + MAX_DELAY * step) & (t < t[-1] - MAX_DELAY * step)
+    design = np.column_stack([BASELINE.columns(ctx, {})[:, 0], np.ones(t.size)])[inner]
+
+    def rss(shift):
+        target = (np.interp(t + shift, t, ctx.y) - ctx.fixed)[inner]
+        coef, *_ = np.linalg.lstsq(design, target, rcond=None)
+        return float(np.sum((design @ coef - target) ** 2))
+
+    shifts = step * np.arange(-MAX_DELAY, MAX_DELAY + 1)
+    sums = [rss(shift) for shift in shifts]
+    best = int(np.argmin(sums))
+    return float(shifts[best]) if sums[best] < DELAY_GAIN * sums[MAX_DELAY] else 0.0
+
+
 def decide(run_dir) -> Naming:
     """Load, calibrate, locate and name (steps 1-4) without co-simulating. Raises
     FileNotFoundError or ValueError (one message naming the file and the row, column, section
@@ -145,6 +174,9 @@ def decide(run_dir) -> Naming:
     run.orient_friction(motion.v)
     ctx = Context.of(run, motion)
     usable = ~motion.standstill & ~motion.ends
+    run.channel_delay = channel_delay(ctx, usable)
+    if run.channel_delay:
+        ctx.y = np.interp(motion.time + run.channel_delay, motion.time, ctx.y)
     forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
     if min(forward, backward) < ONE_WAY * usable.sum():
         raise ValueError(f"{run.path / 'data.csv'}: the feed moves one way only ({forward} samples "

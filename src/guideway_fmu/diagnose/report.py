@@ -226,6 +226,10 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
                        f"{locate.gap(y, nm.baseline.prediction + nm.law, nm.held):.6g}"
                        if nm.law is not None else "-"},
         "Sign of friction_force": {"convention": describe_friction_sign(run)},
+        "Delay of the compared channel": {
+            "delay behind the motion [s]": (f"{run.channel_delay:.6g}: the channel was shifted "
+                                            f"back by it before the fits" if run.channel_delay
+                                            else "none found")},
         "Warnings": {str(i + 1): w for i, w in enumerate(run.warnings)} or {"-": "none"},
         "Timing": {"diagnose wall time [s]": f"{seconds:.2f}"},
     }}

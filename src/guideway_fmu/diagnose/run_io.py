@@ -64,6 +64,7 @@ class MeasuredRun:
     warnings: list = field(default_factory=list)
     friction_sign: str | None = None  # [channels] friction_sign as stated, or as found
     friction_sign_stated: bool = False
+    channel_delay: float = 0.0  # s, the compared channel's delay behind the motion, undone
 
     @property
     def channel_sign(self) -> float:

@@ -52,6 +52,7 @@ ORDER = 7  # polynomial order of the filter that differentiates the position twi
 LONGEST = 101
 NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
 SMOOTHEST = 513  # longest window [samples] of smooth_channel
+CLUSTER = 0.1  # samples closer than this many grid steps are averaged before interpolation
 
 
 def noise_rms(y, order: int = 2) -> float:
@@ -182,19 +183,33 @@ class Motion:
 
 
 class _Grid:
-    """Savitzky-Golay derivatives on a uniform grid at the median step of ``time``."""
+    """Savitzky-Golay derivatives on a uniform grid at the median step of ``time``, or at the
+    mean step where the median is under half of it (bursty timestamps: clusters of samples a
+    fraction of a microsecond apart and gaps between them). Samples closer than CLUSTER steps
+    are averaged into one before the cubic spline carries an uneven record onto the grid: a
+    spline through near-coincident, quantised samples would ring."""
 
     def __init__(self, time, window):
         self.time = time
-        self.step = float(np.median(np.diff(time)))
-        self.uniform = np.ptp(np.diff(time)) <= 1e-6 * self.step
+        intervals = np.diff(time)
+        median, mean = float(np.median(intervals)), float(np.mean(intervals))
+        self.step = median if median >= 0.5 * mean else mean
+        self.uniform = np.ptp(intervals) <= 1e-6 * self.step
         self.grid = time if self.uniform else np.arange(time[0], time[-1] + 0.5 * self.step, self.step)
         self.longest = int(self.grid.size - (1 - self.grid.size % 2))  # odd, within the grid
         self.window = min(int(window), self.longest)
+        # cluster index of every sample: a new cluster where the gap reaches CLUSTER steps
+        self.cluster = np.r_[0, np.cumsum(intervals >= CLUSTER * self.step)]
 
     def on_grid(self, y):
-        """``y`` at the grid times (cubic-spline interpolation of an uneven record)."""
-        return y if self.uniform else CubicSpline(self.time, y)(self.grid)
+        """``y`` at the grid times (cubic-spline interpolation of an uneven record, through the
+        means of its clusters)."""
+        if self.uniform:
+            return y
+        count = np.bincount(self.cluster)
+        t = np.bincount(self.cluster, self.time) / count
+        v = np.bincount(self.cluster, np.asarray(y, dtype=float)) / count
+        return CubicSpline(t, v)(self.grid)
 
     def filter(self, y, deriv=0, window=None, order=3):
         window = self.window if window is None else min(window, self.longest)
