@@ -96,14 +96,14 @@ def test_report_is_self_contained_with_plots_and_augmented_scenario(results):
     assert "FrictionDahl.fmu" in scenario and 'profile = "replay"' in scenario
 
 
-def test_unsupported_rig_kind_is_refused_naming_key(results, tmp_path):
+def test_vertical_kind_with_a_horizontal_channel_is_refused_naming_key(results, tmp_path):
     root, _ = results
     run = tmp_path / "vertical"
     run.mkdir()
     (run / "data.csv").write_text((root / "quiet" / "data.csv").read_text())
     rig = (root / "quiet" / "rig.toml").read_text().replace('"horizontal_drive"', '"vertical_response"')
     (run / "rig.toml").write_text(rig)
-    with pytest.raises(ValueError, match=r"rig.toml: \[rig\] key 'kind'"):
+    with pytest.raises(ValueError, match=r"rig.toml: \[channels\] key 'outputs'"):
         diagnose(run, tmp_path / "out")
 
 

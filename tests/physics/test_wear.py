@@ -182,6 +182,7 @@ def test_rate_table_matches_direct_evaluation(lg20):
     assert lg20.wear_rate(0.99 * lg20.threshold_load) == 0.0
 
 
+@pytest.mark.slow
 def test_wear_grows_with_load_and_with_creep_rate_figs_14_to_16():
     loads = [500.0, 2000.0, 5000.0]
     depth = [wear.simulate(wear.Guide(), f, 5000.0, 3).columns["wear_upper"][-1]

@@ -284,6 +284,7 @@ def _ball_row_rig(fmu_dir, step):
         record=("Row.F_friction", "Row.groups", "Rig.drive_force"), plots={}), "row test")
 
 
+@pytest.mark.slow
 def test_ball_row_cosimulation_converges_to_the_reference_between_contact_events(fmu_dir):
     # RK4 substeps with held inputs (event-located) against RK45 on the same row (not smooth)
     # through contacts forming and breaking. The friction jumps where a gap closes or a group
