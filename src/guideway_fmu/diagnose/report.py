@@ -163,8 +163,9 @@ def describe_friction_sign(run) -> str:
     return f"friction_force {what}, {said}"
 
 
-def diagnosis_record(naming: Naming, realised: Realisation) -> dict:
-    """The content of diagnosis.json."""
+def diagnosis_record(naming, realised) -> dict:
+    """The content of diagnosis.json, of a horizontal or a vertical run's naming and
+    realisation."""
     before, after = realised.gaps(naming)
     return {
         "format": FORMAT, "missing_effect": naming.effect,
@@ -235,27 +236,11 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
     }}
 
 
-def vertical_record(naming, realised) -> dict:
-    """The content of diagnosis.json for a vertical run."""
-    before, after = realised.gaps(naming)
-    return {
-        "format": FORMAT, "missing_effect": naming.effect,
-        "confidence": round(naming.confidence, 6), "channel": naming.run.channel,
-        "gap_before": round(before, 8), "gap_after": round(after, 8),
-        "noise_floor": round(naming.noise, 8),
-        "candidates": [{"effect": f.effect, "gap_after": round(g, 8), "score": round(float(s), 3),
-                        "parameters": {k: (round(float(v), 12) if isinstance(v, (float, np.floating))
-                                           else v) for k, v in f.parameters.items()}}
-                       for s, f, g in naming.ranked],
-        "equation": naming.equation,
-    }
-
-
 def write_vertical_report(out: Path, naming, realised, seconds: float) -> dict:
     """diagnosis.json, fit.csv, the plots (time, spectra, ranking) and report.html of a
     vertical run into ``out``; returns the diagnosis."""
     nm, rig, y, held = naming, naming.rig, naming.y, naming.held
-    diagnosis = vertical_record(nm, realised)
+    diagnosis = diagnosis_record(nm, realised)
     write_diagnosis(out / "diagnosis.json", diagnosis)
     time = nm.run.time
     write_fit(out / "fit.csv", time[held], y[held], realised.baseline[held],
