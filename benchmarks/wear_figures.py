@@ -14,8 +14,6 @@ import argparse
 import dataclasses
 from pathlib import Path
 
-import numpy as np
-
 from guideway_fmu.analysis import wear as wa
 from guideway_fmu.analysis.wear_plots import plot_figures
 from guideway_fmu.physics import wear

@@ -116,10 +116,6 @@ def read_case(path) -> WearCase:
     return WearCase(guide, load, fit)
 
 
-def _lists(columns: dict) -> dict:
-    return {key: np.asarray(values).tolist() for key, values in columns.items()}
-
-
 def contact_summary(guide: wear.Guide, load: float) -> dict:
     """A ball's contact in each row of the new guide under F [N] (SI units)."""
     _, *ball_loads = guide.settle(load, guide.preload_deformation, guide.preload_deformation)

@@ -519,9 +519,9 @@ class BallToBall(_Table):
                                                  ctx.motion.v[pick], ctx.normal_load / rows,
                                                  packed=True))
         # the probe's level over the same nodes, its rise measured as the fit's
-        nodes = np.linspace(0.0, float(ctx.distance[-1]), fit.setting["nodes"])
-        where = np.clip(np.rint(ctx.distance[pick] / spacing).astype(int), 0, nodes.size - 1)
-        level = np.array([probe[where == k].mean() for k in range(nodes.size) if np.any(where == k)])
+        nodes = fit.setting["nodes"]
+        where = np.clip(np.rint(ctx.distance[pick] / spacing).astype(int), 0, nodes - 1)
+        level = np.array([probe[where == k].mean() for k in range(nodes) if np.any(where == k)])
         per_degree = rows * float(level.mean() - level.min()) / np.degrees(self.PROBE)
         out = {"ball_to_ball_friction": rise}
         if per_degree > 0.0:

@@ -372,8 +372,8 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
     value = from_q(q)
     setting = candidate.change(rig.base, value)
     parameters = {candidate.parameter: value, "offset": c}
-    if candidate.effect == "preload_loss":
-        parameters["preload"] = setting.preload * int(rig.run.sections["guideway"].get("rows", 4)) / 4
+    if candidate.effect == "preload_loss":  # as the rig file states it, over all elements
+        parameters["preload"] = float(rig.run.sections["guideway"]["preload"]) * value
     elif candidate.effect == "lubricant_film":
         parameters["viscosity"] = setting.viscosity
     return VerticalFit(candidate.effect, setting, f + c, c, parameters, 2)
@@ -396,7 +396,6 @@ class VerticalNaming:
     effect: str
     winner: VerticalFit | None
     equation: str | None
-    law: np.ndarray | None
     confidence: float
     frequencies: list
 
@@ -438,7 +437,7 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
         return (gap_base**2 - gap_model**2) / max(gap_base**2 - noise**2, 1e-300)
 
     frequencies = locate.peak_frequencies(run.time, residual, held)
-    effect, winner, equation, law = "none", None, None, None
+    effect, winner, equation = "none", None, None
     if significant:
         score, best, best_gap = ranked[0] if ranked else (-np.inf, None, gap_base)
         if score > SCORE_MIN and share(best_gap) >= EXPLAINED:
@@ -454,11 +453,9 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
                 effect = "unknown"
                 equation = " + ".join(f"{c:.6g}*{t}" if t != "1" else f"{c:.6g}"
                                       for t, c in coefficients.items()) or "0"
-            else:
-                law = None
     scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
     return VerticalNaming(run, rig, y, fit_mask, held, baseline, noise, gap_base, significant,
-                          ranked, effect, winner, equation, law, _confidence(scores, effect),
+                          ranked, effect, winner, equation, _confidence(scores, effect),
                           frequencies)
 
 
