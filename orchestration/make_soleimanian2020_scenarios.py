@@ -12,7 +12,7 @@ package's one scenario writer (``cosim.system.dump``).
 from pathlib import Path
 
 from guideway_fmu.cosim.system import Builder, dump
-from guideway_fmu.scenarios import FOLDER
+from guideway_fmu.scenarios import FOLDER, couple_contact
 
 LOAD_CASES = {  # N -> Hz, as in the paper's figures
     6000: (2500, 3000, 4500, 5000, 9000),  # Figs. 20-23
@@ -28,8 +28,6 @@ STEP = {0: 4e-6, 6000: 4e-6, 9000: 4e-6, 12000: 4e-6,
         (9000, 3000): 2e-6, (12000, 2500): 1e-6, (12000, 3000): 1e-6, (12000, 4000): 2e-6,
         (12000, 4500): 2e-6}
 DRY_STEP = 2e-6  # s, both dry scenarios
-LAW = ("force_1um", "exponent", "sine", "approach_upper", "approach_lower", "rate_upper",
-       "rate_lower")  # the contact's force law over a step, handed to the carriage
 RECORD = ["Feed.u", "Carriage.y", "Carriage.y_dot", "Contact.F_contact", "Contact.F_upper",
           "Contact.F_lower", "Contact.h_upper", "Contact.h_lower", "Contact.K_contact"]
 HEADER = "Written by orchestration/make_soleimanian2020_scenarios.py; edit that script, not this file."
@@ -48,17 +46,12 @@ def scenario(name, description, amplitude=0, frequency=0.0, contact="ContactEHL"
     b.component("Contact", Path(f"{contact}.fmu"))
     if friction:
         b.component("Friction", Path("FrictionMixedEHL.fmu"))
-    for source, target in (("Feed.u", "Contact.u"), ("Carriage.y", "Contact.y"),
-                           ("Carriage.y_dot", "Contact.y_dot"), ("Contact.F_contact", "Carriage.F_contact")):
-        b.connect(source, target)
+    b.connect("Feed.u", "Contact.u")
+    couple_contact(b, lubricated=contact == "ContactEHL")
     if friction:
         b.connect("Feed.u", "Friction.u")
         for v in ("F_upper", "F_lower", "h_upper", "h_lower"):
             b.connect(f"Contact.{v}", f"Friction.{v}")
-    b.tangent("Contact.F_contact", "Contact.y", "Contact.K_contact", "Carriage.K_contact",
-              "Contact.y_dot", "Contact.C_contact", "Carriage.C_contact",
-              model={f"law_{n}": f"Carriage.law_{n}" for n in LAW},
-              settings={"interpolate_inputs": True} if contact == "ContactEHL" else None)
     b.record(RECORD + (["Friction.F_friction"] if friction else []), interval=4e-6)
     b.plots(time=["Carriage.y", "Contact.F_upper", "Contact.F_lower"],
             spectrum=["Carriage.y", "Contact.F_upper"], film=["Contact.h_upper", "Contact.h_lower"],

@@ -50,6 +50,7 @@ from ..physics import guideway as gw
 from ..physics import guideway_contact
 from ..physics.carriage import LENGTH_SCALE, STANDARD_GRAVITY
 from ..physics.film import LineContact
+from ..scenarios import couple_contact
 from . import locate, regression
 from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, SIGNIFICANT_ERRORS, UNRESOLVED, \
     _bic, _confidence
@@ -61,8 +62,6 @@ CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
 FMUS = ("FeedKinematics", "ForceTable", "VerticalDynamics", *CONTACT_FMUS.values())
 CHANNELS = {"vertical_displacement": ("Carriage.y", "m"),
             "vertical_acceleration": ("Carriage.y_ddot", "m/s2")}
-LAW = ("force_1um", "exponent", "sine", "approach_upper", "approach_lower", "rate_upper",
-       "rate_lower")  # the contact's force law over a step, handed to the carriage
 COSIM_STEP = 4e-6  # s, largest macro step of the realisation (the paper scenarios' coarsest)
 SIMULATIONS = 6  # most simulations a candidate's fit takes
 STEP, TRUST = 0.05, 0.7  # the fit's first step and its largest, in its parameter (fit_candidate)
@@ -239,15 +238,8 @@ class VerticalRig:
         b.component("Carriage", fmus / "VerticalDynamics.fmu", mass=setting.mass,
                     y_start=self.start(setting))
         b.component("Contact", fmus / f"{contact}.fmu", **self.contact_parameters(setting))
-        for source, target in (("Feed.u", "Contact.u"), ("Carriage.y", "Contact.y"),
-                               ("Carriage.y_dot", "Contact.y_dot"),
-                               ("Contact.F_contact", "Carriage.F_contact"),
-                               ("Load.F", "Carriage.F_ext")):
-            b.connect(source, target)
-        b.tangent("Contact.F_contact", "Contact.y", "Contact.K_contact", "Carriage.K_contact",
-                  "Contact.y_dot", "Contact.C_contact", "Carriage.C_contact",
-                  model={f"law_{n}": f"Carriage.law_{n}" for n in LAW},
-                  settings={"interpolate_inputs": True} if setting.contact == "ehl" else None)
+        b.connect("Feed.u", "Contact.u").connect("Load.F", "Carriage.F_ext")
+        couple_contact(b, lubricated=setting.contact == "ehl")
         b.record([self.column, "Carriage.y", "Contact.F_upper", "Contact.h_upper", "Feed.u"])
         b.plots(time=[self.column, "Contact.F_upper"], spectrum=[self.column])
         return b.system()

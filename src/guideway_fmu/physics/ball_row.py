@@ -185,12 +185,12 @@ class BallRow(ContinuousModel):
 
     def outputs(self, t, state, inputs, wanted=None):
         row = self.row(state, inputs)
-        u, mu, cos = inputs["u"], self.bearing.friction, np.cos(self.bearing.nominal_angle)
+        u, b = inputs["u"], self.bearing
         total = float(row.contact_forces.sum())
-        return {"F_friction": float(-mu * total / cos
-                                    * regularised_sign(u, self.velocity_tolerance)),
+        per_speed = b.friction * total * b2b.contact_slide_speed(b, 1.0)  # loss / |u| (eq. 32)
+        return {"F_friction": float(-per_speed * regularised_sign(u, self.velocity_tolerance)),
                 "contact_force": total, "max_contact_force": float(row.contact_forces.max()),
-                "friction_loss": mu * total * abs(u) / cos, "groups": float(len(row.groups)),
+                "friction_loss": per_speed * abs(u), "groups": float(len(row.groups)),
                 "epsilon_mean": float(row.moving.mean())}
 
 

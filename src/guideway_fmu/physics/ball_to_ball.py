@@ -341,9 +341,10 @@ def drag(bearing: Bearing, upper, lower):
             / (bearing.psi * (1 - np.cos(2 * bearing.nominal_angle))))[()]
 
 
-def contact_slide_speed(bearing: Bearing) -> float:
-    """|Delta v_B2B| = v / cos(beta_0) [m/s] (eq. 31)."""
-    return bearing.velocity / np.cos(bearing.nominal_angle)
+def contact_slide_speed(bearing: Bearing, velocity: float | None = None) -> float:
+    """|Delta v_B2B| = |v| / cos(beta_0) [m/s] (eq. 31), v the bearing's or ``velocity`` [m/s]."""
+    v = bearing.velocity if velocity is None else velocity
+    return abs(v) / np.cos(bearing.nominal_angle)
 
 
 def group_forces(epsilon, drags) -> tuple[float, np.ndarray]:

@@ -1,6 +1,6 @@
-"""The shipped scenarios: the cases of Soleimanian et al. (2020) as TOML systems.
+"""The shipped scenarios as TOML systems, and how the project couples a carriage to its contact.
 
-Written by ``orchestration/make_soleimanian2020_scenarios.py`` (edit that, not the files). They
+Written by the ``orchestration/make_*_scenarios.py`` scripts (edit those, not the files). They
 name their FMUs by file name only, so every command finds them in one FMU folder (``--fmus``,
 default ``./fmus``, built on demand) from any working directory.
 """
@@ -8,7 +8,26 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..physics.guideway_contact import OUTPUTS
+
 FOLDER = Path(__file__).resolve().parent
+#: the contact's force law over a step (roller_contact.OpposedRows), handed to the carriage
+LAW = tuple(name for name in OUTPUTS if name.startswith("law_"))
+
+
+def couple_contact(builder, lubricated: bool, carriage: str = "Carriage", contact: str = "Contact"):
+    """Couple a VerticalDynamics ``carriage`` and a roller ``contact`` in ``builder`` (a
+    cosim.system.Builder) as every vertical rig of the project: y and y_dot to the contact, its
+    force back, and the stabilised coupling's tangent with the contact's force law; a
+    ``lubricated`` contact takes its inputs as they hold at the end of the step."""
+    for source, target in (("y", "y"), ("y_dot", "y_dot")):
+        builder.connect(f"{carriage}.{source}", f"{contact}.{target}")
+    builder.connect(f"{contact}.F_contact", f"{carriage}.F_contact")
+    builder.tangent(f"{contact}.F_contact", f"{contact}.y", f"{contact}.K_contact",
+                    f"{carriage}.K_contact", f"{contact}.y_dot", f"{contact}.C_contact",
+                    f"{carriage}.C_contact", model={n: f"{carriage}.{n}" for n in LAW},
+                    settings={"interpolate_inputs": True} if lubricated else None)
+    return builder
 
 
 def names() -> list[str]:
