@@ -38,6 +38,8 @@ class GuidewaySlave(Fmi2Slave):
     #: "guideway": a subsystem of the roller guide; "diagnosis": a rig model or a candidate
     #: effect of the discrepancy workflow
     role = "guideway"
+    #: why the component has no continuous-time model, where it has none (said by the reference)
+    without_time_model = "it has none"
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -101,7 +103,8 @@ class GuidewaySlave(Fmi2Slave):
         """The component's physics as a continuous-time model (physics/dynamics.py) from its
         parameter values by name, validated (raise ValueError naming the parameter): what the
         FMU evaluates and steps and what the monolithic reference integrates."""
-        raise NotImplementedError(f"{cls.__name__} has no continuous-time model")
+        raise NotImplementedError(f"{cls.__name__} has no continuous-time model: "
+                                  f"{cls.without_time_model}")
 
     def build_model(self):
         """Build and validate the physics from the parameters (raise ValueError)."""

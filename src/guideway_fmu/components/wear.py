@@ -21,6 +21,8 @@ class Wear(GuidewaySlave):
 
     description = __doc__.splitlines()[0]
     internal_state = ("wear", "distance_last")
+    without_time_model = ("it advances along its running-distance input, not in time "
+                          "(guideway-fmu wear computes the same wear directly)")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -60,12 +62,6 @@ class Wear(GuidewaySlave):
         self.output("ball_load_upper", "N", "load of a ball in an upper row", loaded)
         self.output("ball_load_lower", "N", "load of a ball in a lower row", loaded)
         self.wear, self.distance_last = np.zeros(2), 0.0
-
-    @classmethod
-    def continuous_model(cls, parameters):
-        raise NotImplementedError("Wear advances along its running-distance input, not in time: "
-                                  "no continuous-time model (guideway-fmu wear computes the same "
-                                  "wear directly)")
 
     def build_model(self):
         return wear.from_parameters(**self.parameter_values())
