@@ -92,6 +92,16 @@ preload = 9200.0
     refused(write(tmp_path, rig=rig), "rig.toml", "'pressure_viscosity'", "[lubricant]")
 
 
+@pytest.mark.parametrize("entry, key", [("rows = 0", "rows"), ("elements_per_row = 2.5",
+                                                                 "elements_per_row"),
+                                        ("element_radius = -1e-3", "element_radius"),
+                                        ("preload = -5.0", "preload"),
+                                        ("contact_angle_deg = 95.0", "contact_angle_deg")])
+def test_impossible_guideway_numbers_name_the_key(tmp_path, entry, key):
+    # a zero row count would divide the preload by zero further on
+    refused(write(tmp_path, RIG + f"[guideway]\n{entry}\n"), "rig.toml", f"[guideway] key '{key}'")
+
+
 def test_bad_format_and_mass_name_key(tmp_path):
     refused(write(tmp_path, rig=RIG.replace("/1", "/2")), "rig.toml", "'format'")
     refused(write(tmp_path, rig=RIG.replace("3.2", "-1.0")), "rig.toml", "moving_mass")

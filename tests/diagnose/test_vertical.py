@@ -95,3 +95,19 @@ def test_vertical_workflow_names_the_hidden_effect_of_first_generator_records(
     else:
         assert d["equation"]
     assert (tmp_path / "out" / "spectra.png").stat().st_size > 10_000
+
+
+def test_free_vibration_peak_is_read_off_a_known_sine_beside_the_load_line(tmp_path, record,
+                                                                          fmu_dir):
+    # a sine at 0.9 of the baseline's natural frequency under the response to the normal force
+    # (its line ten times stronger, its harmonics excluded): the peak comes back to 0.1 %; the
+    # load's line alone, noise-free, shows no free vibration (its window leakage is not one)
+    rig = VerticalRig(load_run(record), tmp_path / "model", fmu_dir)
+    t = rig.run.time
+    line = 2e-7 * (rig.normal - rig.normal.mean()) / np.ptp(rig.normal)
+    f_load = rig.spectrum(rig.normal, 16)[0][np.argmax(rig.spectrum(rig.normal, 16)[1][1:]) + 1]
+    f0 = 0.9 * rig.natural_frequency(rig.base)
+    assert abs(f0 / f_load - round(2 * f0 / f_load) / 2) > 0.05  # away from the load's lines
+    y = 1e-8 * np.sin(2 * np.pi * f0 * t + 0.3) + line
+    assert rig.measured_natural_frequency(y) == pytest.approx(f0, rel=1e-3)
+    assert rig.measured_natural_frequency(line) is None

@@ -241,3 +241,27 @@ def test_advance_in_pieces_equals_one_run():
 def test_bad_guide_parameters_are_refused_by_name(changes, name):
     with pytest.raises(ValueError, match=name):
         wear.Guide(**changes)
+
+
+def test_wear_volume_per_sliding_length_is_eqs_51_to_53_by_hand():
+    # eq. 52 over eq. 51 with the numbers written out for D = 2.6, a slip area of 100 patches
+    s = surface(2.6)
+    pressure = 1.2e9
+    a_l, a_c, g, d = s.largest_area(pressure), s.critical_area, 2.38e-8, 2.6
+    slip = 100 * 64e-12
+    volume = (100 * (math.pi - 2) * 2 ** 0.4 * g ** 0.6 * a_l ** 0.8 * a_c ** 0.4 * 1.6
+              / (0.4 * math.pi ** 2.2))
+    size = 2 * 1.6 * math.sqrt(a_c) / (math.sqrt(math.pi) * 0.6)
+    assert s.wear_per_length(slip, pressure) == pytest.approx(volume / size, rel=1e-12)
+    assert s.wear_per_length(2 * slip, pressure) == pytest.approx(
+        2 * s.wear_per_length(slip, pressure), rel=1e-12)  # patches add up
+
+
+def test_row_wear_rate_is_eqs_54_to_58_by_hand(lg20):
+    # n_s K_f V_0 |zeta_x| over the strip 2 l_r b, l_r = (D_w (n_s - 1) + 1) D_b
+    c = lg20.contact(140.0)
+    v0 = lg20.surface.wear_per_length(c.creep.slip_area, c.pressure)
+    strip = (1.0 * 11 + 1) * 3.969e-3
+    assert c.wear_rate == pytest.approx(12 * 5e-4 * v0 * abs(c.creep.creep_along)
+                                        / (2 * strip * c.across), rel=1e-12)
+    assert c.pressure == pytest.approx(140.0 / (math.pi * c.along * c.across))  # eq. 21

@@ -24,6 +24,8 @@ VOCABULARY = {
     "vertical_displacement": "m", "vertical_acceleration": "m/s2",
 }
 GUIDEWAY_TYPES = ("roller", "ball")
+#: [guideway] keys that must be > 0 (rows and elements_per_row: whole numbers >= 1; preload >= 0)
+POSITIVE_GUIDEWAY = ("element_radius", "roller_length", "reduced_modulus")
 #: conventions of a friction_force channel: the force resisting the motion (opposite to
 #: feed_velocity), or the force a sensor feels (along the motion); the workflow works along it
 FRICTION_SIGNS = ("opposes_motion", "along_motion")
@@ -149,6 +151,18 @@ def read_rig(path: Path) -> dict:
                     _number(source, name, key, value)
             sections[name] = table
     guideway = sections.get("guideway", {})
+    for key in ("rows", "elements_per_row"):
+        if key in guideway and not (isinstance(guideway[key], int) and guideway[key] >= 1):
+            raise ValueError(f"{source}: [guideway] key '{key}' must be a whole number >= 1, "
+                             f"got {guideway[key]!r}")
+    for key in POSITIVE_GUIDEWAY:
+        if key in guideway:
+            _number(source, "guideway", key, guideway[key], positive=True)
+    if "preload" in guideway:
+        _number(source, "guideway", "preload", guideway["preload"], non_negative=True)
+    if not 0.0 < guideway.get("contact_angle_deg", 45.0) < 90.0:
+        raise ValueError(f"{source}: [guideway] key 'contact_angle_deg' must lie between 0 and "
+                         f"90, got {guideway['contact_angle_deg']!r}")
     if "type" in guideway and guideway["type"] not in GUIDEWAY_TYPES:
         raise ValueError(f"{source}: [guideway] key 'type' must be one of {GUIDEWAY_TYPES}, "
                          f"got {guideway['type']!r}")

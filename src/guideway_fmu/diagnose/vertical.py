@@ -202,16 +202,19 @@ class VerticalRig:
         (zero-padded 16 times, the peak's log amplitude fitted by a parabola) within a factor 3
         of the baseline's f_n, away (2 %, at least twice the window's main lobe) from the normal
         force's dominant frequency and its multiples of a half (the rows' nonlinearity makes
-        harmonics and half-harmonics of it);
+        harmonics and half-harmonics of it), and 10 times above the window's leakage of the
+        response's load line there (the normal force's spectrum scaled to that line);
         None where no peak stands out (10 times the median there)."""
         f_base = self.natural_frequency(self.base)
         f, amplitude = self.spectrum(y, 16)
         _, load = self.spectrum(self.normal, 16)
         near = (f > f_base / 3) & (f < 3 * f_base)
-        f_load = f[np.argmax(load[1:]) + 1]
+        line = np.argmax(load[1:]) + 1
+        f_load = f[line]
         lobe = 4.0 / (self.run.time[-1] - self.run.time[0])  # twice a Hann window's main lobe
         for k in range(1, 13):
             near &= np.abs(f - 0.5 * k * f_load) > max(0.02 * 0.5 * k * f_load, lobe)
+        near &= amplitude > 10 * amplitude[line] / load[line] * load
         if not np.any(near):
             return None
         best = np.flatnonzero(near)[np.argmax(amplitude[near])]
