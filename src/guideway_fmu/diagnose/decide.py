@@ -165,8 +165,9 @@ def decide(run_dir) -> Naming:
     run = load_run(run_dir)
     source = run.path / "rig.toml"
     if run.kind != "horizontal_drive":
-        raise ValueError(f"{source}: [rig] key 'kind': diagnose handles 'horizontal_drive' rigs; "
-                         f"{run.kind!r} is not supported yet")
+        raise ValueError(f"{source}: [rig] key 'kind': decide handles 'horizontal_drive' rigs; "
+                         f"{run.kind!r} runs are decided by vertical.decide_vertical "
+                         f"(guideway-fmu diagnose takes either)")
     if run.model["friction"] != "coulomb":
         raise ValueError(f"{source}: [model] key 'friction': diagnose calibrates a 'coulomb' "
                          f"baseline; {run.model['friction']!r} is not supported as a baseline yet")

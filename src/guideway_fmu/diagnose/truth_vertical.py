@@ -50,7 +50,7 @@ class VerticalTruth:
     noise_rms: float
 
 
-def _rig_toml(path: Path, mass, guideway, contact, channel, normal_channel=True) -> None:
+def _rig_toml(path: Path, mass, guideway, contact, channel) -> None:
     rows = [f'format = "{FORMAT}"', "", "[rig]", 'kind = "vertical_response"',
             'description = "synthetic vertical run (diagnose/truth_vertical.py)"',
             f"moving_mass = {mass!r}", "", "[guideway]", 'type = "roller"']
@@ -58,8 +58,7 @@ def _rig_toml(path: Path, mass, guideway, contact, channel, normal_channel=True)
     rows += ["", "[lubricant]", f"viscosity = {LineContact.viscosity!r}",
              f"pressure_viscosity = {LineContact.pressure_viscosity!r}", "", "[model]",
              'friction = "coulomb"', f'contact = "{contact}"', "", "[channels]",
-             'inputs = ["feed_position", "feed_velocity"' + (', "normal_force"]' if normal_channel
-                                                              else "]"),
+             'inputs = ["feed_position", "feed_velocity", "normal_force"]',
              f'outputs = ["{channel}"]']
     path.write_text("\n".join(rows) + "\n", encoding="utf-8")
 
