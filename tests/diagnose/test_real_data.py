@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib.util
 import os
+import sys
 import warnings
 from pathlib import Path
 
@@ -80,3 +81,22 @@ def test_converter_refuses_a_folder_without_its_files(tmp_path):
     for short_name in EXPECTED:
         with pytest.raises(FileNotFoundError, match=str(tmp_path)):
             converter(short_name).convert(tmp_path, tmp_path / "out")
+
+
+def test_report_recovers_the_level_and_the_even_slope_of_a_known_record(tmp_path, monkeypatch):
+    """report.py's own numbers beside the workflow's: the authors' friction range (2 Fc) and the
+    slope of a force that does not turn with the motion, on strokes with both known."""
+    spec = importlib.util.spec_from_file_location("real_data_report", CONVERTERS / "report.py")
+    report = importlib.util.module_from_spec(spec)
+    monkeypatch.setitem(sys.modules, spec.name, report)  # its dataclass looks itself up there
+    spec.loader.exec_module(report)
+    time = np.arange(0.0, 8.0, 0.01)
+    position = 0.02 * (1.0 - np.cos(2.0 * np.pi * time / 2.0))  # 40 mm strokes
+    moving_out = np.sin(2.0 * np.pi * time / 2.0) > 0.0
+    force = np.where(moving_out, 5.0, -5.0) + 1.5 + 0.2 * position * 1e3  # Fc 5 N, 0.2 N/mm
+    run = tmp_path / "run"
+    run.mkdir()
+    np.savetxt(run / "data.csv", np.c_[time, position, force], delimiter=",",
+               header="time,feed_position,friction_force", comments="")
+    assert report.authors_range(run) == pytest.approx(10.0, rel=0.1)
+    assert report.even_slope(run) == pytest.approx(0.2, rel=1e-6)
