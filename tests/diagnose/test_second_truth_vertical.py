@@ -171,7 +171,8 @@ def test_every_effect_writes_a_run_that_follows_the_format(tmp_path, effect):
     assert truth.expected == sv.EFFECTS[effect] and truth.channel in sv.CHANNELS
     assert run.kind == "vertical_response" and run.time.size == N
     assert np.all(np.diff(run.time) > 0)
-    assert run.model == {"friction": "coulomb", "contact": "dry_hertz"} and run.outputs == [truth.channel]
+    assert run.model == {"friction": "coulomb", "contact": "dry_hertz"}
+    assert run.outputs == [truth.channel]
     assert "normal_force" in run.inputs and "feed_position" in run.inputs
     assert set(run.columns) == set(run.inputs) | {truth.channel}
     guideway = run.sections["guideway"]

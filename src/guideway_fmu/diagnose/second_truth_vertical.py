@@ -39,8 +39,8 @@ Film (``lubricant_film``, the format's ``ehl``): eqs. 4-5 of the paper per row::
     h = h_s (1 - 0.75 exp(132 h' / u)),   h_s = R 13.924 F^-0.045 U^0.647 G^0.46,
     F = Q / (E' R l),  U = eta |u| / (E' R),  G = alpha E'
 
-with ``R`` the roller radius, ``u`` the feed velocity, ``Q`` the row's current roller load.
-Solved for ``h'`` it is the state equation ``h' = (|u| / 132) ln(4 (h_s - h) / (3 h_s))``: the
+with ``R`` the roller radius, ``u`` the feed velocity (its magnitude, the entrainment speed, in
+``U`` and in the squeeze exponent), ``Q`` the row's current roller load. Solved for ``h'`` it is the state equation ``h' = (|u| / 132) ln(4 (h_s - h) / (3 h_s))``: the
 steady film (``h' = 0``) is ``h_s / 4``, a film above it squeezes out, one below it grows. Two
 regularisations, both only where the law itself is singular: the exact law forbids ``h >= h_s``
 (infinite squeeze rate); below ``1 - h/h_s = SQUEEZE_KNEE`` the logarithm is continued by its
@@ -57,9 +57,10 @@ of the stated one. ``unmodeled_mass``: the truth mass is 8-60 % above ``moving_m
 J Appl Mech 42: the dissipative force proportional to the elastic force), each roller's load
 ``Q(delta) (1 + beta delta')`` (never below 0) with ``beta`` [s/m] giving damping ratios of about
 0.3-5 % (the order of a rolling guide's joint damping). It is load dependent (the upper rows damp
-more) and dissipates energy; the vocabulary's ``lubricant_film`` adds feed-speed content,
-``unmodeled_mass`` and ``preload_loss`` shift the stiffness or inertia, and none of them takes
-energy out of the ringing at the natural frequency.
+more) and takes energy out of the ringing at the natural frequency; the vocabulary's
+``lubricant_film`` adds feed-speed content (its squeeze term dissipates only through the film's
+weak load dependence, ``F^-0.045``), ``unmodeled_mass`` and ``preload_loss`` shift the inertia
+or stiffness; none of them is a damping that grows with the contact load.
 
 Strength: ``size`` sets the sensor noise against the effect's visible part, the truth's channel
 less the stated model's (same inputs) less its mean (a sensor offset, which the workflow
@@ -75,11 +76,12 @@ jitter in half of the records. Feed (top speed 0.05-0.4 m/s, acceleration at mos
 sinusoidal with a third harmonic (the paper's eq. 1a / 32 fit), triangular strokes with cosine
 blends, S-curve moves with dwells, or a multi-sine. Load: a constant 0-50 % of the preload plus
 1-3 harmonics, a linear sweep or a random band of 20-60 sines, at 0.15-0.65 or 1.3-2 times the
-stated model's natural frequency (the undamped model would grow without bound at resonance). Channel: ``vertical_displacement`` with a sensor
-offset of up to 20 um or ``vertical_acceleration`` with a bias of up to 0.5 % of its range; noise
-white, AR(1) or 1/f, ADC steps in half of the records, 0-5 outliers. ``feed_position`` as
-encoder counts, ``feed_velocity`` in half of the records, ``normal_force`` from a load cell with
-0.05-0.5 % noise.
+stated model's natural frequency (the undamped model would grow without bound at resonance).
+Channel: ``vertical_displacement`` with a sensor offset of up to 20 um or
+``vertical_acceleration`` with a bias of up to 0.5 % of its range; noise white, AR(1) or 1/f,
+ADC steps in half of the records, 0-5 outliers. ``feed_position`` as encoder counts,
+``feed_velocity`` in half of the records, ``normal_force`` from a load cell with 0.05-0.5 %
+noise.
 """
 from __future__ import annotations
 
@@ -92,8 +94,8 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from guideway_fmu.diagnose.second_truth import (
-    DWELL, FORMAT, NOISE_COLOURS, VISIBLE_PER_SIZE, _is_int, _is_real, _log_uniform, _move, _rms, _schedule_motion, _sine_motion, _stream, _toml_value,
-    _unit_noise, _write_csv)
+    DWELL, FORMAT, NOISE_COLOURS, VISIBLE_PER_SIZE, _is_int, _is_real, _log_uniform, _move,
+    _rms, _schedule_motion, _sine_motion, _stream, _toml_value, _unit_noise, _write_csv)
 
 #: hidden effect -> the answer the workflow should give
 EFFECTS = {
@@ -160,7 +162,8 @@ class VerticalTruth:
 def palmgren_deflection(load, length):
     """Approach [m] of one roller line contact under ``load`` [N] (length [m]), Palmgren."""
     q = np.maximum(np.asarray(load, dtype=float), 0.0)
-    return 1e-3 * PALMGREN * q ** PALMGREN_LOAD_EXPONENT / (1e3 * length) ** PALMGREN_LENGTH_EXPONENT
+    scale = 1e-3 * PALMGREN / (1e3 * length) ** PALMGREN_LENGTH_EXPONENT
+    return scale * q ** PALMGREN_LOAD_EXPONENT
 
 
 def palmgren_load(deflection, length):
@@ -355,7 +358,8 @@ def draw(out_dir, effect: str, seed: int, *, n_samples: int | None = None,
     def speed(t):
         return feed(np.atleast_1d(np.asarray(t, dtype=float)))[1].reshape(np.shape(t))
     stated = Plant(rig.guide, rig.mass)
-    natural = math.sqrt(stated.stiffness(stated.equilibrium(0.0, 0.0)[0]) / rig.mass) / (2 * math.pi)
+    resting = stated.equilibrium(0.0, 0.0)[0]
+    natural = math.sqrt(stated.stiffness(resting) / rig.mass) / (2 * math.pi)
     load_kind, force, top_frequency = _draw_load(seed, rig, natural, rate, times[-1])
     truth_plant, hidden = _truth_plant(effect, seed, rig)
     channel = CHANNELS[int(_stream(seed, "channel").integers(2))]
