@@ -77,7 +77,7 @@ def test_small_free_vibration_has_the_frequency_of_the_row_force_slope(angle):
     crossings = t[rising] - swing[rising] * (t[rising + 1] - t[rising]) / (swing[rising + 1]
                                                                           - swing[rising])
     measured = (len(crossings) - 1) / (crossings[-1] - crossings[0])
-    assert measured == pytest.approx(expected, rel=1e-4)
+    assert measured == pytest.approx(expected, rel=1e-6)
     # the consistent geometry at y = 0: 100 rollers of stiffness dQ/d delta = Q / (0.9 delta),
     # each seen through sin^2(theta)
     roller = 100.0 / (0.9 * 3.84e-7)
