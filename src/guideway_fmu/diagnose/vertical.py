@@ -162,6 +162,7 @@ class VerticalRig:
             float(np.ptp(y)) / (2 * math.pi * 5e3) ** 2)  # an acceleration's displacement scale
         self.rtol = float(np.clip(RESOLUTION * span / LENGTH_SCALE, 1e-10, MAX_RTOL))
         self.cache: dict = {}
+        self.fused: FusedVertical | None = None  # the last model simulated (its tables reused)
 
     def contact_parameters(self, setting: Setting) -> dict:
         parameters = {**self.geometry, "preload": setting.preload}
@@ -254,8 +255,8 @@ class VerticalRig:
         """The compared channel of ``setting`` at the sample times, without offset (the
         reference's models in one fused right-hand side, reference/vertical.py; cached)."""
         if setting not in self.cache:
-            model = FusedVertical(self.system(setting))
-            self.cache[setting] = model.simulate(self.run.time, self.rtol, [self.column])[
+            self.fused = FusedVertical(self.system(setting), self.fused)
+            self.cache[setting] = self.fused.simulate(self.run.time, self.rtol, [self.column])[
                 self.column]
         return self.cache[setting]
 
