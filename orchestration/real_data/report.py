@@ -15,7 +15,8 @@ Inputs, both from the environment or the command line, never a fixed path outsid
   ``emps-validation/`` (a folder holding ``real/`` with them is accepted too).
 
 Each record is converted into ``--work`` (default a new temporary folder), diagnosed by
-``guideway-fmu diagnose`` in a subprocess, one at a time, and judged against its authors' finding
+``guideway-fmu diagnose`` in a subprocess, one at a time, on a copy of src/guideway_fmu made
+at the start (others may edit it meanwhile), and judged against its authors' finding
 by the rules written next to each data set below. The page goes to ``--out`` (default
 docs/real-data.md). ``--reuse`` keeps diagnoses already in ``--work`` (for rewording the page).
 """
@@ -27,6 +28,7 @@ import importlib.util
 import json
 import os
 import platform
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -93,7 +95,34 @@ def velocity(cols: dict[str, np.ndarray]) -> np.ndarray:
 # ---------------------------------------------------------------------------------- diagnosis
 
 
-def diagnose(record: Record, out: Path, fmus: Path, reuse: bool) -> None:
+def freeze_sources(work: Path, reuse: bool) -> dict:
+    """Copy src/guideway_fmu into WORK/src once, so that every diagnosis of the run uses the same
+    code while others edit the repository; return its stamp (commit, uncommitted files, hash)."""
+    stamp_file = work / "src" / "stamp.json"
+    if reuse and stamp_file.is_file():
+        return json.loads(stamp_file.read_text())
+    target = work / "src" / "guideway_fmu"
+    if target.exists():
+        shutil.rmtree(target)
+    shutil.copytree(REPO / "src" / "guideway_fmu", target,
+                    ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    digest = hashlib.sha256()
+    for path in sorted(target.rglob("*.py")):
+        digest.update(path.relative_to(target).as_posix().encode() + path.read_bytes())
+
+    def git(*args):
+        done = subprocess.run(["git", "-C", str(REPO), *args], capture_output=True, text=True)
+        return done.stdout.strip() if done.returncode == 0 else ""
+
+    changed = [line.split(maxsplit=1)[1] for line in git("status", "--porcelain", "--", "src").splitlines()
+               if line.strip()]
+    stamp = {"commit": git("rev-parse", "--short", "HEAD") or "unknown", "uncommitted": changed,
+             "hash": digest.hexdigest()[:12]}
+    stamp_file.write_text(json.dumps(stamp))
+    return stamp
+
+
+def diagnose(record: Record, out: Path, fmus: Path, reuse: bool, env: dict) -> None:
     target = out / record.data_set / record.name
     stored = target / "diagnosis.json"
     refused = target / "refusal.txt"
@@ -108,7 +137,7 @@ def diagnose(record: Record, out: Path, fmus: Path, reuse: bool) -> None:
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "diagnose", str(record.run_dir),
                            "--out", str(target), "--fmus", str(fmus)],
-                          capture_output=True, text=True, timeout=1800)
+                          capture_output=True, text=True, timeout=1800, env=env)
     record.seconds = time.perf_counter() - start
     (target / "seconds.txt").write_text(f"{record.seconds:.2f}")
     if done.returncode == 0:
@@ -319,7 +348,7 @@ def label(record: Record) -> str:
 
 
 def write_page(records: list[Record], missing: list[str], out: Path, command: str, wall: float,
-               sources: dict[str, str]) -> None:
+               sources: dict[str, str], stamp: dict) -> None:
     emps = [r for r in records if r.data_set == "emps"]
     mnich = [r for r in records if r.data_set == "mnich_rack_pinion"]
     seals = [r for r in records if r.data_set == "tud_pneumatic_seals" and not r.name.startswith(("rerun", "reconnected"))]
@@ -355,6 +384,12 @@ def write_page(records: list[Record], missing: list[str], out: Path, command: st
         "",
         f"Command: `{command}`; wall time {wall / 60:.1f} min for {len(records)} records "
         f"(one diagnosis at a time, {platform.machine()}, {os.cpu_count()} cores).",
+        "",
+        f"Workflow: `src/guideway_fmu` at commit {stamp['commit']}"
+        + (f" with uncommitted changes in {', '.join(f'`{f}`' for f in stamp['uncommitted'])}"
+           if stamp["uncommitted"] else "")
+        + f", copied once for the run (sources hash {stamp['hash']}), so every record saw the "
+        "same code. The answers change with the workflow: rerun the script after changing it.",
         "",
         "Columns: *answer* is the named missing effect (confidence); *gap* is the held-out",
         "range-normalised RMS error before → after adding it, over the noise floor (for `unknown`",
@@ -560,8 +595,11 @@ def main(argv=None) -> int:
         if digest in seen:
             record.extra["same_as"] = seen[digest]
         seen.setdefault(digest, record.name)
+    stamp = freeze_sources(work, args.reuse)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(work / "src")] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
     for i, record in enumerate(records, 1):
-        diagnose(record, work / "out", fmus, args.reuse)
+        diagnose(record, work / "out", fmus, args.reuse, env)
         said = record.refusal or record.diagnosis["missing_effect"]
         print(f"[{i}/{len(records)}] {record.data_set}/{record.name}: {said} "
               f"({record.seconds:.1f} s)", flush=True)
@@ -570,7 +608,7 @@ def main(argv=None) -> int:
     shown = ["python orchestration/real_data/report.py"] + (["--seals", *args.seals] if args.seals else []) + (
         ["--no-reruns"] if args.no_reruns else []) + (["--reuse"] if args.reuse else [])
     command = "GUIDEWAY_FMU_REAL_RAW=<raw folders> " + " ".join(shown)
-    write_page(records, missing, args.out, command, wall, SOURCES)
+    write_page(records, missing, args.out, command, wall, SOURCES, stamp)
     print(f"wrote {args.out} ({len(records)} records, {wall / 60:.1f} min); work folder {work}")
     return 0
 
