@@ -52,27 +52,52 @@ def test_preload_wear_distance_between_grid_values_matches_truth_noise_free(tmp_
 @pytest.fixture(scope="module")
 def band_noise_run(tmp_path_factory):
     # a null run plus band-limited random force (20-100 Hz, 3x the white noise): its second
-    # differences are small (the noise floor hardly sees it), no candidate and no sparse law
-    # describes it, and the gap is about 3 noise floors
+    # differences are small (the white floor hardly sees it), but it does not repeat with the
+    # motion: noise of another colour, whose RMS is known by construction
     run = truth.simulate("none", np.random.default_rng(14), noise=0.01, n_samples=3000)
     band = sosfiltfilt(butter(4, [20, 100], btype="bandpass", fs=1000, output="sos"),
                        np.random.default_rng(1).standard_normal(run.info.n_samples))
     run.columns["drive_force"] = run.columns["drive_force"] + band * 3 * run.info.noise_rms / band.std()
-    return truth.write_run(tmp_path_factory.mktemp("band") / "run", run)
+    path = truth.write_run(tmp_path_factory.mktemp("band") / "run", run)
+    return path, np.sqrt(10.0) * run.info.noise_rms
 
 
-def test_large_gap_nothing_explains_is_unknown_with_a_law(band_noise_run):
-    named = decide.decide(band_noise_run)
+def test_band_limited_random_force_is_noise_named_none_its_rms_the_floor_hand_value(band_noise_run):
+    path, noise_rms = band_noise_run
+    named = decide.decide(path)
+    assert named.cross_gap > decide.UNRESOLVED  # over the white floor, as before
+    assert named.effect == "none" and named.equation is None
+    span = np.ptp(named.ctx.y[named.held])
+    assert named.noise == pytest.approx(noise_rms / span, rel=0.15)  # white + band, by hand
+    assert named.white_noise < 0.5 * named.noise
+
+
+@pytest.fixture(scope="module")
+def coherent_gap_run(tmp_path_factory):
+    # a null run plus a force that repeats with the motion but lies outside every candidate's
+    # family and the law's terms: 6 noise RMS x cos(6 pi x / stroke) x (v / v_max)^2 (even in v,
+    # so no friction table sgn(v) f(x) takes it)
+    run = truth.simulate("none", np.random.default_rng(14), noise=0.01, n_samples=3000)
+    x, v = run.truth["position"], run.truth["velocity"]
+    extra = np.cos(6 * np.pi * (x - x.min()) / np.ptp(x)) * (v / np.max(np.abs(v))) ** 2
+    run.columns["drive_force"] = run.columns["drive_force"] + 6 * run.info.noise_rms * extra / extra.std()
+    return truth.write_run(tmp_path_factory.mktemp("coherent") / "run", run)
+
+
+def test_large_gap_repeating_with_the_motion_nothing_explains_is_unknown_with_a_law(
+        coherent_gap_run):
+    named = decide.decide(coherent_gap_run)
     assert named.cross_gap > decide.UNRESOLVED
     assert named.effect == "unknown" and named.equation
-    assert all(score < decide.SCORE_MIN for score, _, _ in named.ranked)
+    assert all(score < decide.SCORE_MIN or f.effect == "position_dependent_friction"
+               for score, f, _ in named.ranked)
 
 
-def test_unresolved_threshold_decides_that_answer(band_noise_run, monkeypatch):
+def test_unresolved_threshold_decides_that_answer(coherent_gap_run, monkeypatch):
     # the same run with the threshold out of reach: the small-gap rule answers none, so the
     # answer above comes from the gap's size, not from a law that explains it
     monkeypatch.setattr(decide, "UNRESOLVED", np.inf)
-    assert decide.decide(band_noise_run).effect == "none"
+    assert decide.decide(coherent_gap_run).effect == "none"
 
 
 def _ranked(**scores):

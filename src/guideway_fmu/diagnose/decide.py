@@ -13,9 +13,15 @@
    foreign terms, and it explains at least EXPLAINED of the gap's excess variance over the
    noise; else ``unknown`` with a sparse-regression law for the residual when such a law (or
    the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap
-   exceeds UNRESOLVED noise floors; else ``none``: a small gap that neither physics nor a law
-   accounts for is taken as what the data cannot resolve (errors of the measured inputs, such
-   as accelerations differenced from encoder counts), which the synthetic null runs show.
+   exceeds UNRESOLVED times the whole noise (locate.incoherent_noise: noise of any colour, where
+   the white floor sees only its high-frequency part); else ``none``: a small gap that neither
+   physics nor a law accounts for is taken as what the data cannot resolve (coloured noise,
+   errors of the measured inputs such as accelerations differenced from encoder counts), which
+   the synthetic null runs show. Significance and the share explained are judged against the
+   white floor, a lower bound of the noise, so that coloured noise never hides a structured
+   gap a candidate explains. The reported noise floor is the larger of the white floor and the
+   incoherent noise left by the reported model (the named one, the baseline with its law for
+   ``unknown``, else the baseline).
    A record that passes its positions once cannot show friction repeating at the same positions,
    the mark of position dependence: there a running-distance candidate within SCORE_MIN of the
    position table is named instead, the pair's evidence shared (:func:`_same_path_choice`);
@@ -25,21 +31,23 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from . import locate, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          candidates_for)
 from .run_io import MeasuredRun, load_run
-from .signals import derive_motion, noise_rms
+from .signals import derive_motion, noise_rms, sampling_step
 
 SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
 SCORE_MIN = 10.0  # held-out BIC improvement a candidate needs to be named
 EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate must explain
 ONE_WAY = 0.02  # least share of the moving samples each direction of motion must have
 LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
-#: a significant gap no candidate or law explains is ``unknown`` above this many noise floors,
-#: else ``none``: below it, it is what errors of the measured inputs alone produce (the true model
-#: fed the recorded motion of synthetic null runs misses by up to about 1.4 noise floors)
+#: a significant gap no candidate or law explains is ``unknown`` above this many times the whole
+#: noise, else ``none``: below it, it is what errors of the measured inputs alone produce (the
+#: true model fed the recorded motion of synthetic null runs misses by up to about 1.4 white
+#: noise floors)
 UNRESOLVED = 2.0
 #: the acceleration derived from the position may carry this share of the force channel's noise
 #: (over the moving mass): its error enters the model as m a, and 0.3 adds 4 % to the noise in
@@ -108,7 +116,8 @@ class Naming:
     held: np.ndarray
     usable: np.ndarray
     baseline: Fit
-    noise: float
+    noise: float  # reported noise floor: max(white, incoherent noise of the reported model)
+    white_noise: float  # white (second-difference) floor of the baseline residual, held out
     gap_base: float
     cross_gap: float  # cross-validated baseline gap over the noise floor, all usable samples
     white: float
@@ -136,26 +145,41 @@ def motion_of(run: MeasuredRun):
 
 
 def channel_delay(ctx: Context, usable) -> float:
-    """The delay [s] of the compared channel behind the motion: the shift, in whole median
-    sampling intervals up to MAX_DELAY, that lets the baseline (Coulomb level, m a, offset)
-    fit it best, where that cuts the baseline's residual sum of squares below DELAY_GAIN of the
-    unshifted one (a force that switches a few samples after each reversal leaves spikes no
-    friction law describes); else 0. A friction build-up after the reversal (pre-sliding) gains
-    less from a shift, for it follows the displacement, not the time."""
+    """The delay [s] of the compared channel behind the motion: the shift, in whole nominal
+    sampling intervals (signals.sampling_step) up to MAX_DELAY, that lets the baseline (Coulomb
+    level, m a, offset) fit it best (on an uneven record refined between the neighbouring steps:
+    its nominal period is not the mean step; on an even one a fractional shift would blur the
+    Coulomb switch the search aligns), where that cuts the baseline's residual sum of squares in
+    excess of the noise's below DELAY_GAIN of the unshifted one's (a force that switches a few
+    samples after each reversal leaves spikes no friction law describes); else 0. A friction
+    build-up after the reversal (pre-sliding) gains less from a shift, for it follows the
+    displacement, not the time. The noise's share (the white floor of the best shift's
+    residual) is taken off both sums: on a record whose derived acceleration is noisy (velocity
+    only) it would otherwise hide the gain."""
     t = ctx.motion.time
-    step = float(np.median(np.diff(t)))
+    step = sampling_step(t)
     inner = usable & (t > t[0] + MAX_DELAY * step) & (t < t[-1] - MAX_DELAY * step)
     design = np.column_stack([BASELINE.columns(ctx, {})[:, 0], np.ones(t.size)])[inner]
 
-    def rss(shift):
+    def residual(shift):
         target = (np.interp(t + shift, t, ctx.y) - ctx.fixed)[inner]
         coef, *_ = np.linalg.lstsq(design, target, rcond=None)
-        return float(np.sum((design @ coef - target) ** 2))
+        return target - design @ coef
 
     shifts = step * np.arange(-MAX_DELAY, MAX_DELAY + 1)
-    sums = [rss(shift) for shift in shifts]
+    sums = [float(np.sum(residual(shift) ** 2)) for shift in shifts]
     best = int(np.argmin(sums))
-    return float(shifts[best]) if sums[best] < DELAY_GAIN * sums[MAX_DELAY] else 0.0
+    uneven = np.ptp(np.diff(t)) > 1e-6 * step
+    if uneven and 0 < best < 2 * MAX_DELAY:  # an uneven record's nominal period is not its
+        found = minimize_scalar(lambda shift: float(np.sum(residual(shift) ** 2)),  # mean step:
+                                bounds=(shifts[best - 1], shifts[best + 1]),  # refined between
+                                method="bounded", options={"xatol": 0.01 * step})  # neighbours
+        shift, least = float(found.x), float(found.fun)
+    else:
+        shift, least = float(shifts[best]), sums[best]
+    noise = inner.sum() * noise_rms(residual(shift)) ** 2
+    gain = max(least - noise, 0.0) / max(sums[MAX_DELAY] - noise, 1e-300)
+    return shift if gain < DELAY_GAIN else 0.0
 
 
 def decide(run_dir) -> Naming:
@@ -217,6 +241,7 @@ def decide(run_dir) -> Naming:
     # the decision: cross-validated over the folds (every usable sample held out once)
     base_cv = out_of_fold([b.prediction for b in bases])
     noise_cv = locate.noise_floor(y, residual, usable)
+    span = float(np.ptp(y[usable]))
     gap_cv = locate.gap(y, base_cv, usable)
     # the RMS of n white-noise samples has a relative standard error of 1 / sqrt(2 n)
     significant = bool(gap_cv > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * usable.sum())) * noise_cv)
@@ -256,16 +281,22 @@ def decide(run_dir) -> Naming:
             (equation, values, _), law_score, law_share = law(foreign=False)
             explains = law_score > SCORE_MIN and law_share >= LAW_EXPLAINED
             foreign_explains = foreign_score > SCORE_MIN and foreign_share >= LAW_EXPLAINED
-            if explains or foreign_explains or gap_cv > UNRESOLVED * noise_cv:
+            whole = locate.incoherent_noise(ctx.motion, y - base_cv, usable) / span
+            if explains or foreign_explains or gap_cv > UNRESOLVED * max(noise_cv, whole):
                 effect = "unknown"
             else:  # small structure no model or law accounts for: the inputs' own errors
                 equation, values = None, None
     if winner is not None:
         winner.parameters.update(CANDIDATES[winner.effect]().interpret(ctx, winner))
+    reported = (winner.prediction if winner is not None else
+                baseline.prediction + (values if values is not None else 0.0))
+    floor = max(noise, locate.incoherent_noise(ctx.motion, y - reported, usable)
+                / float(np.ptp(y[held])))
     scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
     twins = twins if winner is not None else []
     for twin in twins:  # the record holds no evidence between them: they share the pair's best
         scores[twin] = scores[effect] = max(scores[twin], scores[effect])
-    return Naming(run, ctx, fit_mask, held, usable, baseline, noise, gap_base, gap_cv / noise_cv,
+    return Naming(run, ctx, fit_mask, held, usable, baseline, floor, noise, gap_base,
+                  gap_cv / noise_cv,
                   white, significant, where, ranked, foreign_score, effect, winner, equation,
                   values, _confidence(scores, effect), twins)

@@ -198,11 +198,18 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
                                      describe("normal_force", ctx.load_how)},
         "Gap and noise": {
             "baseline gap (vectorised fit)": f"{nm.gap_base:.6g}",
-            "noise floor": "robust RMS of second differences of the baseline residual "
-                           "(1.4826 MAD / sqrt 6), over the held-out range of the channel",
+            "noise floor": f"{nm.noise:.6g}: the larger of the white floor and the RMS of the "
+                           "reported model's residual that does not repeat with the feed's state "
+                           "(half the square difference to the sample of nearest position, "
+                           "velocity and acceleration on another pass, robust), over the "
+                           "held-out range of the channel",
+            "white noise floor": f"{nm.white_noise:.6g}: robust RMS of second differences of "
+                                 "the baseline residual (1.4826 MAD / sqrt 6), the noise's "
+                                 "high-frequency part; significance is judged against it",
             "residual autocorrelation (lags 1-5)": f"{nm.white:.4g} "
                                                    f"(noise alone: ~ {1 / np.sqrt(nm.held.sum()):.2g})",
-            "cross-validated baseline gap / noise floor (all usable samples)": f"{nm.cross_gap:.4g}",
+            "cross-validated baseline gap / white noise floor (all usable samples)":
+                f"{nm.cross_gap:.4g}",
             "significant": str(nm.significant),
             "residual peaks [Hz]": ", ".join(f"{f:.4g}" for f in nm.where["frequencies"]) or "-"},
         "Share of the baseline residual explained by bins of": {

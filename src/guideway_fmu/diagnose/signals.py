@@ -182,18 +182,24 @@ class Motion:
         return self.time - self.time[last], np.abs(self.x - self.x[last])
 
 
+def sampling_step(time) -> float:
+    """The record's nominal sampling interval [s]: the median interval, or the mean where the
+    median is under half of it (bursty timestamps: clusters of samples a fraction of a
+    microsecond apart and gaps between them)."""
+    intervals = np.diff(time)
+    median, mean = float(np.median(intervals)), float(np.mean(intervals))
+    return median if median >= 0.5 * mean else mean
+
+
 class _Grid:
-    """Savitzky-Golay derivatives on a uniform grid at the median step of ``time``, or at the
-    mean step where the median is under half of it (bursty timestamps: clusters of samples a
-    fraction of a microsecond apart and gaps between them). Samples closer than CLUSTER steps
+    """Savitzky-Golay derivatives on a uniform grid at the :func:`sampling_step` of ``time``. Samples closer than CLUSTER steps
     are averaged into one before the cubic spline carries an uneven record onto the grid: a
     spline through near-coincident, quantised samples would ring."""
 
     def __init__(self, time, window):
         self.time = time
         intervals = np.diff(time)
-        median, mean = float(np.median(intervals)), float(np.mean(intervals))
-        self.step = median if median >= 0.5 * mean else mean
+        self.step = sampling_step(time)
         self.uniform = np.ptp(intervals) <= 1e-6 * self.step
         self.grid = time if self.uniform else np.arange(time[0], time[-1] + 0.5 * self.step, self.step)
         self.longest = int(self.grid.size - (1 - self.grid.size % 2))  # odd, within the grid
