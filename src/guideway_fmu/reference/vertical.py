@@ -90,8 +90,10 @@ class FusedVertical:
     def simulate(self, times, rtol: float, columns=COLUMNS) -> dict[str, np.ndarray]:
         """``columns`` (of COLUMNS) at the sample times ``times`` [s] (increasing, the first the
         system's start): DOP853 from sample to sample (module doc) at the relative tolerance
-        ``rtol`` and the absolute tolerance rtol x each state's nominal scale (the monolithic
-        reference's; dop853 takes one, so it integrates the states over their scales). Raises ValueError for times it cannot take, RuntimeError when the
+        ``rtol`` and the absolute tolerance rtol x the smallest nominal scale of the states
+        (dop853 takes one: at least as tight on every state as the monolithic reference's rtol x
+        each state's scale, at fewer right-hand sides than integrating the states over their
+        scales, whose extra arithmetic costs a quarter of a right-hand side). Raises ValueError for times it cannot take, RuntimeError when the
         integration fails."""
         times = np.asarray(times, dtype=float)
         steps = np.diff(times)
@@ -102,18 +104,14 @@ class FusedVertical:
             if name not in COLUMNS:
                 raise ValueError(f"column {name!r}: the fused vertical model gives "
                                  f"{', '.join(COLUMNS)}")
-        scales = self.scales.tolist()
-
-        def scaled(t, z):  # the states in units of their nominal scales
-            return [rate / scale for rate, scale in zip(self.rhs(t, z * self.scales), scales)]
-
-        solver = ode(scaled).set_integrator("dop853", rtol=rtol, atol=rtol,
-                                            first_step=float(steps.max()), nsteps=MAX_STEPS)
-        solver.set_initial_value(self.start / self.scales, times[0])
+        solver = ode(self.rhs).set_integrator(
+            "dop853", rtol=rtol, atol=rtol * float(self.scales.min()),
+            first_step=float(steps.max()), nsteps=MAX_STEPS)
+        solver.set_initial_value(self.start, times[0])
         states = np.empty((times.size, self.start.size))
         states[0] = self.start
         for i in range(1, times.size):
-            states[i] = solver.integrate(times[i]) * self.scales
+            states[i] = solver.integrate(times[i])
             if not solver.successful():
                 raise RuntimeError(f"fused vertical model: DOP853 failed at t = {solver.t} s "
                                    f"(rtol {rtol}, return code {solver.get_return_code()})")
