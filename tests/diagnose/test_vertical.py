@@ -117,6 +117,22 @@ def test_fused_vertical_model_matches_generic_monolithic_reference(tmp_path, rec
         assert np.max(np.abs(fused[name] - expected)) < 1e-5 * np.ptp(expected), name
 
 
+def test_fused_vertical_model_refuses_other_wiring_or_a_damped_contact_naming_it(tmp_path, record,
+                                                                                 fmu_dir):
+    rig = VerticalRig(load_run(record), tmp_path / "model", fmu_dir)
+    system = rig.system(rig.base)
+    unloaded = dataclasses.replace(system, connections=tuple(
+        c for c in system.connections if (c.target, c.input) != ("Carriage", "F_ext")))
+    with pytest.raises(ValueError, match=r"Load\.F -> Carriage\.F_ext, got none"):
+        FusedVertical(unloaded)
+    contact = system.components["Contact"]
+    damped = dataclasses.replace(system, components={**system.components, "Contact":
+                                 dataclasses.replace(contact, parameters={**contact.parameters,
+                                                                          "damping": 10.0})})
+    with pytest.raises(ValueError, match="'Contact' parameter damping"):
+        FusedVertical(damped)
+
+
 def test_free_vibration_peak_is_read_off_a_known_sine_beside_the_load_line(tmp_path, record,
                                                                           fmu_dir):
     # a sine at 0.9 of the baseline's natural frequency under the response to the normal force

@@ -1,7 +1,7 @@
 """Synthetic vertical_response runs with a hidden effect, from the workflow's own vertical model
-(diagnose/vertical.py, the monolithic reference at rtol 1e-9): the first generator's vertical
-records. They test the vertical workflow against its own assumptions; the second generator
-(second_truth.py) tests it against others.
+(diagnose/vertical.py: the reference's models fused, reference/vertical.py, at rtol 1e-9): the
+first generator's vertical records. They test the vertical workflow against its own
+assumptions; the second generator (second_truth.py) tests it against others.
 
 A roller rig (4 rows, 14-26 rollers each, radius 2-3.5 mm, length 6-10 mm, preload 4-12 kN, a
 moving mass of 1.5-5 kg, [lubricant] of the paper) with the feed of the paper's rig (5 Hz,
