@@ -137,6 +137,8 @@ def test_running_distance_models_integrate_the_speed_hand_calculation():
     (lambda: fl.StribeckModel(0.01, -1.0, 2.0, 0.0, 1.0, **COULOMB),
      "stribeck_velocity"),
     (lambda: fl.PreloadLossModel(0.2, 0.0, **COULOMB), "wear_distance"),
+    (lambda: fl.PreloadLossModel(0.2, 1.0, "table", profile="0 0.6 0.4 1", **COULOMB), "profile"),
+    (lambda: fl.PreloadLossModel(0.2, 1.0, "table", profile="0 0.5 0.9", **COULOMB), "profile"),
     (lambda: fl.PreloadLossModel(0.2, 1.0, "linear", **COULOMB), "law"),
     (lambda: fl.PositionTableModel(0.0, 1.0, "1 x", **COULOMB), "factors"),
     (lambda: fl.PositionTableModel(1.0, 1.0, "1 2", **COULOMB), "table_end"),
@@ -147,3 +149,11 @@ def test_running_distance_models_integrate_the_speed_hand_calculation():
 def test_effect_models_refuse_bad_parameters_naming_them(make, message):
     with pytest.raises(ValueError, match=message):
         make()
+
+
+def test_preload_table_law_interpolates_its_profile_hand_value():
+    # nodes at 0, 1, 2 m; D = 0.75 m lies three quarters up the first ramp (g = 0.375), and
+    # beyond the last node the whole loss stays
+    profile = (0.0, 0.5, 1.0)
+    assert fl.preload_loss_factor(0.75, 0.4, 2.0, "table", profile=profile) == pytest.approx(0.85)
+    assert fl.preload_loss_factor(3.0, 0.4, 2.0, "table", profile=profile) == pytest.approx(0.6)

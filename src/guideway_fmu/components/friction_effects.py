@@ -152,9 +152,13 @@ class FrictionPreloadLoss(_RunningDistance):
                        "distance, or for law wear the distance at which the preload is gone")
         self.parameter("law", "exponential", None, "exponential: the level decays as "
                        "exp(-D/wear_distance); wear: the preload's share follows "
-                       "(1 - D/wear_distance)^load_exponent (raceways wearing steadily)")
+                       "(1 - D/wear_distance)^load_exponent (raceways wearing steadily); table: "
+                       "the loss follows profile up to wear_distance (any monotone loss)")
         self.parameter("load_exponent", 1.5, "1", "law wear: n of the preload Q0 ~ delta0^n "
                        "(1.5 Hertz balls, 10/9 rollers)")
+        self.parameter("profile", "0 1", None, "law table: the share of loss lost at equally "
+                       "spaced distances from 0 to wear_distance, rising from 0 to 1, space "
+                       "separated")
 
 
 class FrictionBallToBall(_RunningDistance, _FactorTable):

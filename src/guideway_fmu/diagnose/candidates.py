@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from itertools import combinations_with_replacement
 
 import numpy as np
-from scipy.optimize import minimize_scalar
+from scipy.optimize import lsq_linear, minimize_scalar
 
 from ..physics import ball_row, friction_effects
 from ..physics import ball_to_ball as b2b
@@ -104,6 +104,9 @@ class Candidate:
     uses_position = False  # the friction FMU takes the feed position x
     running_distance = False  # the effect follows the running distance (not the position)
     guide_types: tuple | None = None  # [guideway] types it applies to (None: every rig)
+    #: effects whose models this one's contains: named instead where they score within
+    #: SCORE_MIN of it (the data do not need the richer model)
+    nests: tuple = ()
     continuous: tuple = ()  # setting keys refined between grid values after the grid search
 
     def __init_subclass__(cls, **kwargs):
@@ -159,7 +162,11 @@ class Candidate:
             rhs = np.concatenate([rhs, np.zeros(len(penalty))])
         coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
-        return self._bic(rss, int(fit_mask.sum()), design.shape[1] + len(setting)), coef, design
+        return self._bic(rss, int(fit_mask.sum()), self.dof(coef, setting)), coef, design
+
+    def dof(self, coef: np.ndarray, setting: dict) -> int:
+        """Parameters a fit with these coefficients (offset last) and setting counts."""
+        return coef.size + len(setting)
 
     @staticmethod
     def _bic(rss, n, k) -> float:
@@ -192,24 +199,32 @@ class Candidate:
                 best = (bic, setting, coef, design, phys)
         return best
 
+    def family(self, setting: dict):
+        """The law a setting belongs to: the grid's best setting of each law is refined (a law
+        whose grid misses its optimum must not lose to another's grid point)."""
+        return None
+
     def fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
-        """Best setting by BIC on the fit samples (grid, then ``continuous`` keys refined); None
-        if every setting is unphysical."""
+        """Best setting by BIC on the fit samples (grid, then ``continuous`` keys refined, per
+        :meth:`family`); None if every setting is unphysical."""
         grid = self.settings(ctx)
-        best = None
+        bests = {}
         for setting in grid:
             bic, coef, design = self._evaluate(ctx, fit_mask, setting)
-            if best is not None and bic >= best[0]:
+            key = self.family(setting)
+            if key in bests and bic >= bests[key][0]:
                 continue
             phys = self.physical(ctx, setting, coef[:-1])
             if phys is not None:
-                best = (bic, setting, coef, design, phys)
-        if best is None:
+                bests[key] = (bic, setting, coef, design, phys)
+        if not bests:
             return None
-        _, setting, coef, design, (params, fmu_params) = self._refine(ctx, fit_mask, grid, best)
+        _, setting, coef, design, (params, fmu_params) = min(
+            (self._refine(ctx, fit_mask, grid, best) for best in bests.values()),
+            key=lambda refined: refined[0])
         params = {**params, **{key: value for key, value in setting.items()},
                   "offset": float(coef[-1])}
-        k = design.shape[1] + len(setting)
+        k = self.dof(coef, setting)
         return Fit(self.effect, setting, coef, ctx.fixed + design @ coef, k, params,
                    self.fmu_name, fmu_params, self.rig_mass(ctx, coef), float(coef[-1]),
                    self.uses_position)
@@ -395,11 +410,16 @@ class UnmodeledMass(Candidate):
 
 
 class PreloadLoss(Candidate):
-    """Coulomb level drifting down with the running distance, by either law of
-    :func:`friction_effects.preload_loss_factor`: the empirical exponential decay, or wear
-    taking the preload away at a steady rate (its share of the level following Q_0 ~ delta_0^n,
-    n by the [guideway] type). Settings: the law and its distance (the decay distance, or the
-    running distance at which the preload is gone, which a user can plan maintenance by)."""
+    """Coulomb level drifting down with the running distance, by a law of
+    :func:`friction_effects.preload_loss_factor`: the empirical exponential decay, wear taking
+    the preload away at a steady rate (its share of the level following Q_0 ~ delta_0^n, n by
+    the [guideway] type), or any monotone loss (table: the level piecewise linear over equally
+    spaced distances, never rising, fitted by bounded least squares; its parameters counted
+    by the nodes at which it falls, the degrees of freedom of a monotone fit). Settings: the
+    law and its distance (the decay distance, or the running distance at which the preload is
+    gone, which a user can plan maintenance by), or the table's nodes. The monotone table
+    tells a preload that drifts down in a shape no law foresees from the irregular variation
+    of ball-to-ball contact, which a free table over the same distance also fits."""
 
     effect, signal, fmu_name, uses_position = ("preload_loss", "running_distance",
                                                "FrictionPreloadLoss", True)
@@ -412,19 +432,48 @@ class PreloadLoss(Candidate):
         """n of Q_0 ~ delta_0^n: 10/9 for Palmgren's rollers, 1.5 for Hertz balls."""
         return 10 / 9 if ctx.run.sections.get("guideway", {}).get("type") == "roller" else 1.5
 
+    TABLE_NODES = (3, 4, 5, 7, 9, 12, 17)  # about sqrt 2 apart
+
     def settings(self, ctx):
         total = max(float(ctx.distance[-1]), 1e-9)
         return ([{"law": "exponential", "wear_distance": float(total * f)}
                  for f in np.logspace(-1.5, 1.5, 13)]
                 + [{"law": "wear", "wear_distance": float(total * f)}
-                   for f in np.logspace(-0.3, 1.5, 10)])
+                   for f in np.logspace(-0.3, 1.5, 10)]
+                + [{"law": "table", "wear_distance": total, "nodes": k} for k in self.TABLE_NODES])
 
     def columns(self, ctx, setting):
         v, d, w, tol = ctx.motion.v, ctx.distance, setting["wear_distance"], ctx.velocity_tolerance
         law, n = setting["law"], self.exponent(ctx)
         kept = -self.law(v, d, 1.0, 0.0, w, tol, law, n)  # level 1 throughout
+        if law == "table":  # a drop of the level from each node to the next, linear between
+            ramps = np.eye(setting["nodes"])[1:].cumsum(axis=1)  # node j on: 0 .. 0 1 .. 1
+            return np.column_stack([kept] + [-self.law(v, d, 1.0, 1.0, w, tol, law, n, ramp) - kept
+                                             for ramp in ramps])
         fading = -self.law(v, d, 1.0, 1.0, w, tol, law, n)  # exp(-D / w) or (1 - D / w)_+^n
         return np.column_stack([kept, fading])
+
+    def _evaluate(self, ctx, fit_mask, setting):
+        """As :meth:`Candidate._evaluate`; the table's drops bounded at 0 (the level never
+        rises), its parameters the level, the offset and the drops that are not 0."""
+        if setting["law"] != "table":
+            return super()._evaluate(ctx, fit_mask, setting)
+        target = ctx.y - ctx.fixed
+        design = np.column_stack([self.columns(ctx, setting), np.ones_like(target)])
+        lower = np.r_[-np.inf, np.zeros(design.shape[1] - 2), -np.inf]
+        coef = lsq_linear(design[fit_mask], target[fit_mask], bounds=(lower, np.inf)).x
+        rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
+        return self._bic(rss, int(fit_mask.sum()), self.dof(coef, setting)), coef, design
+
+    def family(self, setting):
+        return setting["law"]
+
+    def dof(self, coef, setting):
+        if setting["law"] != "table":
+            return super().dof(coef, setting)
+        # the level, the offset, the drops that are not 0 and the node count (the table's
+        # distance is the record's, not fitted)
+        return 3 + int(np.sum(coef[1:-1] > 1e-9 * max(abs(coef[0]), 1e-300)))
 
     def physical(self, ctx, setting, coef):
         """Besides the law's own numbers, what a user can plan by: the initial decay rate of the
@@ -432,25 +481,35 @@ class PreloadLoss(Candidate):
         distance at which the preload is gone as fitted; otherwise, where [guideway] gives the
         preload, its share of the rig's load (preload + weight + normal force) and the distance
         at which steady wear at that initial rate would take it (D_loss = share n / rate)."""
-        start = float(coef[0] + coef[1])  # level at D = 0
-        if start <= 0.0 or coef[0] < 0.0:
-            return None
-        loss, w, n = float(coef[1]) / start, setting["wear_distance"], self.exponent(ctx)
-        params = {"coulomb": start, "loss": loss}
-        if setting["law"] == "wear":
+        w, n, law = setting["wear_distance"], self.exponent(ctx), setting["law"]
+        fmu_extra = {}
+        if law == "table":
+            drops = np.asarray(coef[1:], dtype=float)
+            start, lost = float(coef[0]), float(np.sum(drops))
+            if start <= 0.0 or lost <= 0.0 or lost >= start:
+                return None
+            profile = np.r_[0.0, np.cumsum(drops) / lost]
+            profile[-1] = 1.0
+            loss, rate = lost / start, float(drops[0]) / (start * w / (setting["nodes"] - 1))
+            fmu_extra = {"profile": " ".join(repr(float(p)) for p in profile)}
+        else:
+            start = float(coef[0] + coef[1])  # level at D = 0
+            if start <= 0.0 or coef[0] < 0.0:
+                return None
+            loss = float(coef[1]) / start
+            rate = loss * n / w if law == "wear" else loss / w
+        params = {"coulomb": start, "loss": loss, "initial_decay_rate": rate}
+        if law == "wear":
             if not 0.0 <= loss <= 1.0:
                 return None  # the preload's share of the friction
-            params.update(initial_decay_rate=loss * n / w, preload_share=loss,
-                          distance_to_preload_loss=w)
+            params.update(preload_share=loss, distance_to_preload_loss=w)
         else:
-            params["initial_decay_rate"] = loss / w
             preload = float(ctx.run.sections.get("guideway", {}).get("preload", 0.0))
-            if preload > 0.0 and loss > 0.0:
+            if preload > 0.0 and rate > 0.0:
                 share = min(preload / ctx.normal_load, 1.0)
-                params.update(preload_share=share,
-                              distance_to_preload_loss=share * n * w / loss)
-        fmu = {**ctx.coulomb_parameters(start), "loss": loss, "wear_distance": w,
-               "law": setting["law"], "load_exponent": n}
+                params.update(preload_share=share, distance_to_preload_loss=share * n / rate)
+        fmu = {**ctx.coulomb_parameters(start), "loss": loss, "wear_distance": w, "law": law,
+               "load_exponent": n, **fmu_extra}
         return params, fmu
 
 
@@ -464,6 +523,7 @@ class BallToBall(_Table):
     law = staticmethod(friction_effects.ball_to_ball_friction)
     running_distance = True
     guide_types = ("ball",)
+    nests = ("preload_loss",)  # a free table over the running distance holds any monotone drift
     #: what a rig file does not state, for the deviation: the grooves' conformity, the
     #: friction between balls, the load zone's clearance (its length over balls x diameter,
     #: minus 1), the probe's deviation amplitude [rad] and the samples the row is run at

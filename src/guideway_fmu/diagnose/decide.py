@@ -25,6 +25,8 @@
    A record that passes its positions once cannot show friction repeating at the same positions,
    the mark of position dependence: there a running-distance candidate within SCORE_MIN of the
    position table is named instead, the pair's evidence shared (:func:`_same_path_choice`);
+   a candidate whose model a richer one contains is named where it scores within SCORE_MIN of
+   it (:func:`_nested_choice`: preload loss before ball-to-ball contact).
 """
 from __future__ import annotations
 
@@ -104,6 +106,21 @@ def _same_path_choice(ctx: Context, usable: np.ndarray, ranked: list) -> tuple[i
                 and ranked[0][0] in (position, score)):
             return i, ["position_dependent_friction"]
     return 0, []
+
+
+def _nested_choice(ranked: list, chosen: int) -> int:
+    """Index into ``ranked`` of the candidate to name instead of ``ranked[chosen]``: one whose
+    model the chosen one's contains (Candidate.nests: a free table over the running distance
+    holds any monotone drift of the level) scoring within SCORE_MIN of it, the richer model
+    not being needed by the data; else ``chosen``."""
+    if not ranked:
+        return chosen
+    top, best, _ = ranked[chosen]
+    nested = CANDIDATES[best.effect].nests
+    for i, (score, fitted, _) in enumerate(ranked):
+        if fitted.effect in nested and top - score < SCORE_MIN:
+            return i
+    return chosen
 
 
 @dataclass
@@ -272,6 +289,7 @@ def decide(run_dir) -> Naming:
     _, foreign_score, foreign_share = law(foreign=True)
     effect, winner, equation, values = "none", None, None, None
     chosen, twins = _same_path_choice(ctx, usable, ranked)
+    chosen = _nested_choice(ranked, chosen)
     if significant:
         score, best, _ = ranked[chosen] if ranked else (-np.inf, None, gap_base)
         if (score > SCORE_MIN and share(cv_gaps[best.effect]) >= EXPLAINED

@@ -119,25 +119,41 @@ def running_distance(x):
     return np.concatenate(([0.0], np.cumsum(np.abs(np.diff(x)))))
 
 
-PRELOAD_LAWS = ("exponential", "wear")
+PRELOAD_LAWS = ("exponential", "wear", "table")
 
 
-def preload_loss_factor(distance, loss, wear_distance, law="exponential", exponent=1.5):
+def preload_loss_factor(distance, loss, wear_distance, law="exponential", exponent=1.5,
+                        profile=(0.0, 1.0)):
     """Remaining friction level [-] after the running distance D [m], 1 - loss g(D): ``law``
     "exponential", g = 1 - exp(-D / wear_distance), loss [-] the final fraction lost; "wear",
     g = 1 - (1 - D / wear_distance)_+^exponent, loss the share the preload carries and
-    wear_distance [m] > 0 where it is gone."""
+    wear_distance [m] > 0 where it is gone; "table", g interpolated in ``profile`` (rising
+    from 0 to 1, :func:`monotone_profile`) at equally spaced distances from 0 to
+    wear_distance, loss lost there: any monotone loss (running-in that levels off, wear that
+    speeds up)."""
     d = np.asarray(distance, dtype=float)
     if law == "wear":
         return 1.0 - loss * (1.0 - np.maximum(1.0 - d / wear_distance, 0.0) ** exponent)
+    if law == "table":
+        return 1.0 - loss * table_factor(d, 0.0, wear_distance, profile)
     return 1.0 - loss * -np.expm1(-d / wear_distance)
 
 
+def monotone_profile(text) -> np.ndarray:
+    """The profile of a "table" preload loss: numbers separated by spaces (:func:`parse_factors`)
+    that rise from 0 to 1 without falling back."""
+    profile = parse_factors(text)
+    if profile[0] != 0.0 or profile[-1] != 1.0 or np.any(np.diff(profile) < 0.0):
+        raise ValueError(f"parameter profile must rise from 0 to 1 without falling back, "
+                         f"got {text!r}")
+    return profile
+
+
 def preload_loss_friction(u, distance, coulomb, loss, wear_distance, velocity_tolerance=0.0,
-                          law="exponential", exponent=1.5):
+                          law="exponential", exponent=1.5, profile=(0.0, 1.0)):
     """Coulomb friction [N] with the level drifting down over the running distance D [m]
     (:func:`preload_loss_factor`)."""
-    level = coulomb * preload_loss_factor(distance, loss, wear_distance, law, exponent)
+    level = coulomb * preload_loss_factor(distance, loss, wear_distance, law, exponent, profile)
     return -level * regularised_sign(u, velocity_tolerance)
 
 
@@ -283,19 +299,21 @@ class _RunningDistanceModel(EffectModel):
 class PreloadLossModel(_RunningDistanceModel):
     """:func:`preload_loss_friction` over the running distance."""
 
-    def __init__(self, loss, wear_distance, law="exponential", load_exponent=1.5, **coulomb):
+    def __init__(self, loss, wear_distance, law="exponential", load_exponent=1.5,
+                 profile="0 1", **coulomb):
         self.loss = checks.in_range("loss", loss, -10.0, 1.0)
         self.distance_scale = checks.positive("wear_distance", wear_distance)
         if law not in PRELOAD_LAWS:
             raise ValueError(f"law must be one of {PRELOAD_LAWS}, got {law!r}")
         self.law, self.exponent = law, float(checks.positive("load_exponent", load_exponent))
+        self.profile = monotone_profile(profile)
         super().__init__(**coulomb)
 
     def force(self, state, inputs):
         return preload_loss_friction(inputs["u"], state[0],
                                      self.coefficient * self.total_load(inputs), self.loss,
                                      self.distance_scale, self.velocity_tolerance, self.law,
-                                     self.exponent)
+                                     self.exponent, self.profile)
 
 
 class BallToBallModel(_RunningDistanceModel, _TableModel):
