@@ -13,6 +13,7 @@ from guideway_fmu.diagnose import truth_vertical
 from guideway_fmu.diagnose.run_io import load_run
 from guideway_fmu.diagnose.vertical import VerticalRig, decide_vertical
 from guideway_fmu.physics import force_table, guideway as gw
+from guideway_fmu.physics.carriage import STANDARD_GRAVITY
 from guideway_fmu.physics.roller_contact import contact_force
 from guideway_fmu.reference import monolithic
 from guideway_fmu.reference.vertical import FusedVertical
@@ -60,6 +61,7 @@ def record(tmp_path_factory, fmu_dir):
      "'vertical_displacement' or 'vertical_acceleration'"),
     (lambda t: t.replace('contact = "ehl"', "").replace('contact = "dry_hertz"', ""),
      "names its contact"),
+    (lambda t: t.replace("rows = 4", "rows = 3"), "'rows': a vertical run needs an even"),
 ])
 def test_vertical_rigs_the_model_cannot_take_are_refused_naming_the_key(tmp_path, record,
                                                                          fmu_dir, edit, message):
@@ -147,3 +149,62 @@ def test_free_vibration_peak_is_read_off_a_known_sine_beside_the_load_line(tmp_p
     y = 1e-8 * np.sin(2 * np.pi * f0 * t + 0.3) + line
     assert rig.measured_natural_frequency(y) == pytest.approx(f0, rel=1e-3)
     assert rig.measured_natural_frequency(line) is None
+
+
+def _rig_at_rest(folder, rows, elements, angle_deg, preload, mass, load, contact="dry_hertz"):
+    """A vertical rig of a 2 ms record at rest (feed 0.2 m/s for the film), the normal force
+    ``load`` [N] constant; VerticalRig needs no FMUs for its linearisation."""
+    folder.mkdir(parents=True)
+    (folder / "rig.toml").write_text("\n".join([
+        'format = "guideway-measured-run/1"', "[rig]", 'kind = "vertical_response"',
+        f"moving_mass = {mass!r}", "[guideway]", 'type = "roller"', f"rows = {rows}",
+        f"elements_per_row = {elements}", "element_radius = 2.5e-3", "roller_length = 8.0e-3",
+        f"contact_angle_deg = {angle_deg!r}", f"preload = {preload!r}", "[lubricant]",
+        "viscosity = 0.195", "pressure_viscosity = 2.2e-8", "[model]", 'friction = "coulomb"',
+        f'contact = "{contact}"', "[channels]",
+        'inputs = ["feed_position", "feed_velocity", "normal_force"]',
+        'outputs = ["vertical_displacement"]']) + "\n")
+    t = np.arange(200) * 1e-5
+    (folder / "data.csv").write_text(
+        "time,feed_position,feed_velocity,normal_force,vertical_displacement\n" + "".join(
+            f"{float(x)!r},{0.2 * float(x)!r},0.2,{load!r},0.0\n" for x in t))
+    return VerticalRig(load_run(folder), folder / "model", folder / "fmus")
+
+
+@pytest.mark.parametrize("rows", [2, 4])
+@pytest.mark.parametrize("angle_deg", [45.0, 40.0])
+def test_rig_stiffness_of_four_rows_matches_hand_calculation_of_the_spec_reading(
+        tmp_path, rows, angle_deg):
+    # the format: rows / 2 rows of N rollers on each side, each preloaded to P / (rows N) along
+    # its normal, approach delta0 +- y sin(theta), load Q sin(theta) on the mass; Palmgren per
+    # roller, its two line contacts in series (docs/physics.md): delta = 2 x 3.84e-5 mm
+    # Q^0.9 / l[mm]^0.8. At y = 0 (the normal force cancels gravity): K = rows N sin^2(theta)
+    # k_el, k_el = (10/9) Q0 / delta0; 4 rows at 45 deg: K = 2 N k_el, the paper's eq. 14.
+    # E.g. rows 4, N 20, P 9200 N, l 8 mm: Q0 115 N, delta0 1.0412 um, k_el 1.2273e8 N/m,
+    # K 4.909e9 N/m at 45 deg (6548 Hz with 2.9 kg); rows 2: Q0 230 N, K 2.631e9 N/m (4794 Hz).
+    n, preload, mass = 20, 9200.0, 2.9
+    rig = _rig_at_rest(tmp_path / "run", rows, n, angle_deg, preload, mass,
+                       -mass * STANDARD_GRAVITY)
+    q0 = preload / (rows * n)
+    delta0 = 2 * 3.84e-5 * q0 ** 0.9 / 8.0 ** 0.8 * 1e-3
+    k_el = 10 / 9 * q0 / delta0
+    stiffness = rows * n * math.sin(math.radians(angle_deg)) ** 2 * k_el
+    if rows == 4 and angle_deg == 45.0:
+        assert stiffness == pytest.approx(2 * n * k_el, rel=1e-12)  # eq. 14
+    assert rig.start(rig.base) == pytest.approx(0.0, abs=1e-15)
+    assert rig.base.preload == preload  # the FMU's F0 over its 4 N' = rows N rollers
+    expected = math.sqrt(stiffness / mass) / (2 * math.pi)
+    assert rig.natural_frequency(rig.base) == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("contact", ["dry_hertz", "ehl"])
+def test_odd_rollers_per_side_are_half_rollers_with_the_same_force_and_films(tmp_path, contact):
+    # 2 rows of 21 (21 rollers a side, no whole FMU groove count) against 4 rows of 21 at twice
+    # the preload, mass and load: the same roller loads and films, so the same static
+    # displacement and natural frequency, with and without the film
+    half = _rig_at_rest(tmp_path / "half", 2, 21, 42.0, 5000.0, 2.0, 800.0, contact)
+    whole = _rig_at_rest(tmp_path / "whole", 4, 21, 42.0, 10000.0, 4.0, 1600.0, contact)
+    assert half.geometry["rollers_per_groove"] == whole.geometry["rollers_per_groove"] == 21
+    assert half.start(half.base) == pytest.approx(whole.start(whole.base), rel=1e-10)
+    assert half.natural_frequency(half.base) == pytest.approx(
+        whole.natural_frequency(whole.base), rel=1e-10)

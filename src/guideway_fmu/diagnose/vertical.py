@@ -7,8 +7,12 @@ ContactDryHertz, ehl: ContactEHL, whose film follows eq. 4 with its squeeze term
 contact's tangent and force law handed to the carriage. What the format fixes, mapped to it:
 
 * the moving mass is VerticalDynamics' mass, gravity along y (along normal_force);
-* each element carries preload / (rows x elements_per_row) along its normal at rest; the
-  contact FMUs share their F0 among 4 N rollers, so F0 = 4 preload / rows;
+* rows / 2 rows of elements_per_row rollers above the moving part and as many below, each
+  element carrying preload / (rows x elements_per_row) along its normal at rest: the contact
+  FMUs have two grooves of N rollers on each side sharing their F0 among 4 N rollers, so
+  N = rows x elements_per_row / 4 and F0 = preload (:func:`contact_geometry`; the rig's
+  stiffness rows x elements_per_row x sin^2(theta) x (10/9) Q0 / delta0, eq. 14 for 4 rows;
+  an odd count of rollers per side is taken as twice as many half rollers);
 * rollers follow Palmgren's law with roller_length; the lubricant's viscosity and
   pressure-viscosity coefficient come from [lubricant], E' from reduced_modulus;
 * the record starts at rest in static equilibrium under gravity and the first normal force, the
@@ -52,6 +56,7 @@ from ..physics import guideway as gw
 from ..physics import guideway_contact
 from ..physics.carriage import LENGTH_SCALE, STANDARD_GRAVITY
 from ..physics.film import LineContact
+from ..physics.roller_contact import EXPONENT, MICRON, palmgren_stiffness
 from ..reference.vertical import FusedVertical
 from ..scenarios import couple_contact
 from . import locate, regression
@@ -116,6 +121,25 @@ def candidates(base: Setting) -> list[Candidate]:
     ) if c.applies(base)]
 
 
+def contact_geometry(rows: int, elements_per_row: int, roller_length: float) -> dict:
+    """The contact FMUs' rollers_per_groove, roller_length [m] and roller_load_1um [N] for
+    ``rows`` (even) rows of ``elements_per_row`` rollers, rows / 2 of them on each side.
+
+    The FMUs put 2 grooves of rollers_per_groove rollers on each side and share F0 among all
+    4 of them, so rollers_per_groove = rows x elements_per_row / 4 with F0 = preload gives each
+    roller preload / (rows x elements_per_row), as the format states. Where that count is not
+    whole (an odd number of rollers per side), each roller is taken as two half rollers: twice
+    the count, half the roller's Palmgren k (at the same approach each carries half the load)
+    and half its length (the film's dimensionless load F / (E' R l), hence the film and its
+    load floor, unchanged): the same net force and films; the FMU's F_upper and F_lower are
+    then half a roller's load. Palmgren's k (roller_load_1um 0) otherwise."""
+    per_side = rows * elements_per_row // 2
+    split = 1 if per_side % 2 == 0 else 2
+    k = palmgren_stiffness(roller_length) / split
+    return {"rollers_per_groove": per_side * split // 2, "roller_length": roller_length / split,
+            "roller_load_1um": 0.0 if split == 1 else k * MICRON ** EXPONENT}
+
+
 class VerticalRig:
     """A vertical run's rig: the motion and load tables its models are driven with (written
     into ``folder``), the baseline setting, and the models' systems and predictions."""
@@ -145,15 +169,19 @@ class VerticalRig:
             writer.writerow(["time", "normal_force"])
             writer.writerows(np.column_stack([run.time, self.normal]).tolist())
         lubricant = run.sections.get("lubricant", {})
+        rows = int(guideway.get("rows", 4))
+        if rows % 2:
+            raise ValueError(f"{source}: [guideway] key 'rows': a vertical run needs an even "
+                             f"number of rows (half above the moving part, half below), "
+                             f"got {rows}")
         self.geometry = {
-            "rollers_per_groove": int(guideway["elements_per_row"]),
+            **contact_geometry(rows, int(guideway["elements_per_row"]),
+                               float(guideway["roller_length"])),
             "contact_angle": math.radians(float(guideway["contact_angle_deg"])),
-            "roller_radius": float(guideway["element_radius"]),
-            "roller_length": float(guideway["roller_length"])}
+            "roller_radius": float(guideway["element_radius"])}
         self.e_reduced = float(guideway.get("reduced_modulus", 2.0e11))
         self.base = Setting(
-            run.moving_mass, run.model["contact"],
-            4.0 * float(guideway["preload"]) / int(guideway.get("rows", 4)),
+            run.moving_mass, run.model["contact"], float(guideway["preload"]),
             float(lubricant.get("viscosity", LineContact.viscosity)),
             float(lubricant.get("pressure_viscosity", LineContact.pressure_viscosity)))
         self.column, self.unit = CHANNELS[run.channel]
@@ -180,7 +208,7 @@ class VerticalRig:
 
     def guideway(self, setting: Setting) -> gw.Guideway:
         return guideway_contact.from_parameters(
-            **self.contact_parameters(setting), roller_load_1um=0.0, damping=0.0,
+            **self.contact_parameters(setting), damping=0.0,
             lubricated=setting.contact == "ehl").guideway
 
     def natural_frequency(self, setting: Setting) -> float:
