@@ -22,9 +22,10 @@ GUIDE = sv.Guide(rows=4, elements=25, radius=2.5e-3, length=10e-3, angle_deg=45.
 
 
 def _hand_palmgren_load(approach_m, length_mm=10.0):
-    """Palmgren in its published units (mm, N): Q = (delta l^0.8 / 3.84e-5)^(1/0.9)."""
+    """Palmgren in its published units (mm, N), a roller's two raceway contacts in series each
+    taking half its approach: Q = (delta / 2 l^0.8 / 3.84e-5)^(1/0.9)."""
     approach_mm = max(approach_m * 1e3, 0.0)
-    return (approach_mm * length_mm ** 0.8 / 3.84e-5) ** (1 / 0.9)
+    return (0.5 * approach_mm * length_mm ** 0.8 / 3.84e-5) ** (1 / 0.9)
 
 
 # ----------------------------------------------------------------------------- physics
@@ -32,9 +33,9 @@ def _hand_palmgren_load(approach_m, length_mm=10.0):
 
 def test_preload_approach_is_palmgren_by_hand():
     """Hand calculation: 100 N on a 10 mm roller gives 3.84e-5 * 100^0.9 / 10^0.8 = 3.84e-4 mm
-    (100^0.9 / 10^0.8 = 10^1.8 / 10^0.8 = 10)."""
-    assert GUIDE.preload_approach == pytest.approx(3.84e-7, rel=1e-12)
-    assert sv.palmgren_load(3.84e-7, 10e-3) == pytest.approx(100.0, rel=1e-12)
+    at each of its two raceway contacts (100^0.9 / 10^0.8 = 10^1.8 / 10^0.8 = 10): 7.68e-4 mm."""
+    assert GUIDE.preload_approach == pytest.approx(7.68e-7, rel=1e-12)
+    assert sv.palmgren_load(7.68e-7, 10e-3) == pytest.approx(100.0, rel=1e-12)
     assert sv.palmgren_load(-1e-9, 10e-3) == 0.0  # an opened contact carries nothing
 
 
@@ -46,8 +47,8 @@ def test_static_equilibrium_balances_the_hand_palmgren_rows(load):
     plant = sv.Plant(GUIDE, mass=4.0)
     y, v = plant.equilibrium(load, 0.0)
     s = math.sin(math.radians(45.0))
-    upper = _hand_palmgren_load(3.84e-7 + y * s)
-    lower = _hand_palmgren_load(3.84e-7 - y * s)
+    upper = _hand_palmgren_load(7.68e-7 + y * s)
+    lower = _hand_palmgren_load(7.68e-7 - y * s)
     assert v == 0.0
     assert 2 * 25 * s * (upper - lower) == pytest.approx(4.0 * 9.81 + load, rel=1e-9)
     if load == 40000.0:
@@ -80,7 +81,7 @@ def test_small_free_vibration_has_the_frequency_of_the_row_force_slope(angle):
     assert measured == pytest.approx(expected, rel=1e-6)
     # the consistent geometry at y = 0: 100 rollers of stiffness dQ/d delta = Q / (0.9 delta),
     # each seen through sin^2(theta)
-    roller = 100.0 / (0.9 * 3.84e-7)
+    roller = 100.0 / (0.9 * 7.68e-7)
     k0 = (guide.vertical_force(h) - guide.vertical_force(-h)) / (2 * h)
     assert k0 == pytest.approx(100 * roller * math.sin(math.radians(angle)) ** 2, rel=1e-6)
 

@@ -27,12 +27,13 @@ paper's eq. 1b with ``rows / 2`` rows per side)::
 
     m y'' = m g + N(t) - (rows / 2) n sin(theta) [Q(delta_up) - Q(delta_low)]
 
-Each roller is ONE Palmgren line contact along its normal (Palmgren 1959, as given by Harris,
-Rolling Bearing Analysis: ``delta[mm] = 3.84e-5 Q[N]^0.9 / l[mm]^0.8``, steel), unloaded
-(``Q = 0``) where ``delta <= 0``; ``delta_0`` is the approach at ``preload / (rows n)``, the load
-the format gives each element at rest. The format says "Palmgren's law with roller_length" per
-element, so the element's whole approach is one such contact (a roller between two raceways
-could also be read as two contacts in series).
+Each roller touches two raceways (rail and carriage): two Palmgren line contacts in series
+along its normal (Palmgren 1959, as given by Harris, Rolling Bearing Analysis: each contact's
+``delta[mm] = 3.84e-5 Q[N]^0.9 / l[mm]^0.8``, steel), so the roller's approach is twice one
+contact's; unloaded (``Q = 0``) where ``delta <= 0``. ``delta_0`` is the approach at
+``preload / (rows n)``, the load the format gives each element at rest. (The format says only
+"Palmgren's law with roller_length"; one contact per roller would make the guide twice as
+stiff.)
 
 Film (``lubricant_film``, the format's ``ehl``): eqs. 4-5 of the paper per row::
 
@@ -114,6 +115,7 @@ GRAVITY = 9.81  # m/s^2
 PALMGREN = 3.84e-5
 PALMGREN_LOAD_EXPONENT = 0.9
 PALMGREN_LENGTH_EXPONENT = 0.8
+CONTACTS_PER_ROLLER = 2  # raceway contacts in series: rail and carriage
 #: eq. 4 of Soleimanian et al. (2020): coefficient, exponents of F, U, G, squeeze factors
 FILM_COEFFICIENT = 13.924
 FILM_LOAD_EXPONENT = -0.045
@@ -160,17 +162,18 @@ class VerticalTruth:
 
 
 def palmgren_deflection(load, length):
-    """Approach [m] of one roller line contact under ``load`` [N] (length [m]), Palmgren."""
+    """Approach [m] of one roller (its CONTACTS_PER_ROLLER line contacts in series) under
+    ``load`` [N] (length [m]), Palmgren."""
     q = np.maximum(np.asarray(load, dtype=float), 0.0)
-    scale = 1e-3 * PALMGREN / (1e3 * length) ** PALMGREN_LENGTH_EXPONENT
+    scale = CONTACTS_PER_ROLLER * 1e-3 * PALMGREN / (1e3 * length) ** PALMGREN_LENGTH_EXPONENT
     return scale * q ** PALMGREN_LOAD_EXPONENT
 
 
 def palmgren_load(deflection, length):
-    """Load [N] of one roller line contact at approach ``deflection`` [m]; 0 where it is not
-    positive (the contact opens)."""
+    """Load [N] of one roller at approach ``deflection`` [m] (:func:`palmgren_deflection`
+    inverted); 0 where it is not positive (the contacts open)."""
     d = np.maximum(np.asarray(deflection, dtype=float), 0.0)
-    scale = 1e-3 * PALMGREN / (1e3 * length) ** PALMGREN_LENGTH_EXPONENT
+    scale = CONTACTS_PER_ROLLER * 1e-3 * PALMGREN / (1e3 * length) ** PALMGREN_LENGTH_EXPONENT
     return (d / scale) ** (1.0 / PALMGREN_LOAD_EXPONENT)
 
 
