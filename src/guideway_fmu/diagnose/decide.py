@@ -150,15 +150,16 @@ class Naming:
     not_told_apart: list  # effects scoring like the named one that the record cannot tell from it
 
 
-def motion_of(run: MeasuredRun):
-    """The feed motion of ``run`` (signals.derive_motion), the acceleration allowed INPUT_SHARE
-    of the force channel's noise over the moving mass where the model has a mass term."""
+def motion_of(run: MeasuredRun, delay: float = 0.0):
+    """The feed motion of ``run`` (signals.derive_motion) ``delay`` [s] before each sample, the
+    acceleration allowed INPUT_SHARE of the force channel's noise over the moving mass where the
+    model has a mass term."""
     columns = {c: run.columns[c] for c in MOTION_CHANNELS
                if c in run.inputs or (c == "feed_acceleration" and c in run.columns)}
     mass_term = run.channel == "drive_force" and run.moving_mass > 0.0
     tolerance = (INPUT_SHARE * noise_rms(run.columns[run.channel]) / run.moving_mass
                  if mass_term else None)
-    return derive_motion(run.time, columns, tolerance)
+    return derive_motion(run.time, columns, tolerance, delay)
 
 
 def channel_delay(ctx: Context, usable) -> float:
@@ -217,8 +218,10 @@ def decide(run_dir) -> Naming:
     ctx = Context.of(run, motion)
     usable = ~motion.standstill & ~motion.ends
     run.channel_delay = channel_delay(ctx, usable)
-    if run.channel_delay:
-        ctx.y = np.interp(motion.time + run.channel_delay, motion.time, ctx.y)
+    if run.channel_delay:  # the models see the motion the channel responds to
+        motion = motion_of(run, run.channel_delay)
+        ctx = Context.of(run, motion)
+        usable = ~motion.standstill & ~motion.ends
     forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
     if min(forward, backward) < ONE_WAY * usable.sum():
         raise ValueError(f"{run.path / 'data.csv'}: the feed moves one way only ({forward} samples "

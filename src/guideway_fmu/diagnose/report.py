@@ -235,8 +235,9 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
                        if nm.law is not None else "-"},
         "Sign of friction_force": {"convention": describe_friction_sign(run)},
         "Delay of the compared channel": {
-            "delay behind the motion [s]": (f"{run.channel_delay:.6g}: the channel was shifted "
-                                            f"back by it before the fits" if run.channel_delay
+            "delay behind the motion [s]": (f"{run.channel_delay:.6g}: the models are driven by "
+                                            f"the motion that long before each sample (the "
+                                            f"replay too)" if run.channel_delay
                                             else "none found")},
         "Warnings": {str(i + 1): w for i, w in enumerate(run.warnings)} or {"-": "none"},
         "Timing": {"diagnose wall time [s]": f"{seconds:.2f}"},

@@ -196,8 +196,9 @@ class _Grid:
     are averaged into one before the cubic spline carries an uneven record onto the grid: a
     spline through near-coincident, quantised samples would ring."""
 
-    def __init__(self, time, window):
+    def __init__(self, time, window, delay=0.0):
         self.time = time
+        self.at = time - delay if delay else time  # where the outputs are wanted
         intervals = np.diff(time)
         self.step = sampling_step(time)
         self.uniform = np.ptp(intervals) <= 1e-6 * self.step
@@ -221,7 +222,17 @@ class _Grid:
         window = self.window if window is None else min(window, self.longest)
         out = savgol_filter(self.on_grid(y), window, order, deriv=deriv, delta=self.step,
                             mode="interp")
-        return out if self.uniform else CubicSpline(self.grid, out)(self.time)
+        return self.back(out)
+
+    def back(self, on_grid):
+        """Values on the grid carried to the output instants ``at`` (cubic spline)."""
+        if self.uniform and self.at is self.time:
+            return on_grid
+        return CubicSpline(self.grid, on_grid)(self.at)
+
+    def values(self, y):
+        """A channel at the output instants, unfiltered."""
+        return np.asarray(y, dtype=float) if self.at is self.time else self.back(self.on_grid(y))
 
     def derivation(self, source="", derivative=0, window=None, order=3, **details) -> Derivation:
         """The :class:`Derivation` of :meth:`filter` with these arguments."""
@@ -293,11 +304,15 @@ def _acceleration_from_position(grid: _Grid, position, rounding, tolerance, per_
     return a, window, ends
 
 
-def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Motion:
+def derive_motion(time, columns: dict, acceleration_noise: float | None,
+                  delay: float = 0.0) -> Motion:
     """Motion from the measured ``feed_position`` / ``feed_velocity`` / ``feed_acceleration``;
     ``acceleration_noise`` [m/s^2]: the noise RMS the acceleration may carry where it is derived
     from the position (None: the model sets no limit; the acceleration then comes as without
-    the position, or from the position by the cubic filter, scaled by its gain)."""
+    the position, or from the position by the cubic filter, scaled by its gain). ``delay`` [s]:
+    the motion is wanted that long before each sample (a channel recorded behind the motion):
+    the derived signals are carried there by cubic splines from the grid, the smooth motion, not
+    the switching force, being interpolated across a bursty record's gaps."""
     time = np.asarray(time, dtype=float)
     how = {}
     if "feed_velocity" in columns:
@@ -305,7 +320,7 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
     else:
         rough = np.gradient(columns["feed_position"], time)
     coarse = _Grid(time, max(5, 2 * (time.size // 400) + 1)).filter(rough)
-    grid = _Grid(time, _window(time, coarse))
+    grid = _Grid(time, _window(time, coarse), delay)
 
     def measured(name):
         y = columns[name]
@@ -313,7 +328,7 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
             how[name] = grid.derivation()
             return grid.filter(y)
         how[name] = Derivation()
-        return np.asarray(y, dtype=float)
+        return grid.values(y)
 
     if "feed_velocity" in columns:
         v = measured("feed_velocity")
@@ -351,8 +366,10 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None) -> Moti
         ends = np.zeros(time.size, dtype=bool)
         if "feed_acceleration" in columns:
             a = measured("feed_acceleration")
-        elif "feed_velocity" in columns:
-            a = grid.filter(v, deriv=1)
+        elif "feed_velocity" in columns:  # the derivative of the velocity as measured (or
+            raw = columns["feed_velocity"]  # smoothed) at the samples, not of v moved by delay
+            here = _Grid(time, grid.window).filter(raw) if how["feed_velocity"].window else raw
+            a = grid.filter(here, deriv=1)
             how["feed_acceleration"] = grid.derivation("feed_velocity", 1)
         else:
             a = grid.filter(columns["feed_position"], deriv=2)
