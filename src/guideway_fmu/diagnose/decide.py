@@ -136,7 +136,7 @@ class Naming:
     noise: float  # reported noise floor: max(white, incoherent noise of the reported model)
     white_noise: float  # white (second-difference) floor of the baseline residual, held out
     gap_base: float
-    cross_gap: float  # cross-validated baseline gap over the noise floor, all usable samples
+    cross_gap: float  # cross-validated baseline gap over the white floor, all usable samples
     white: float
     significant: bool
     where: dict
