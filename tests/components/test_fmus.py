@@ -679,7 +679,9 @@ result = simulate_fmu(str(unzip), start_values={"y": 1e-6}, stop_time=1e-4, outp
 modules = {name: getattr(module, "__file__", None) for name, module in sys.modules.items()
            if name.startswith(("ContactDryHertz", "guideway_fmu"))}
 print(json.dumps({"F_contact": float(result["F_contact"][-1]), "modules": modules,
-                  "resources": str(unzip / "resources")}))
+                  "resources": str(unzip / "resources")}), flush=True)
+import os
+os._exit(0)  # no interpreter finalisation: pythonfmu 0.7 with SciPy loaded may crash there
 """
 
 

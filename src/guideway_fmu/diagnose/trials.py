@@ -11,6 +11,7 @@ FMUs loaded into the process, so tests and benchmarks run a batch in a child pro
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import time as clock
@@ -50,8 +51,11 @@ def run_batch(root, fmu_dir, trials: list[dict], timeout: float | None = None) -
 def main(argv=None) -> None:
     root, fmu_dir, trials = argv if argv is not None else sys.argv[1:]
     warnings.simplefilter("ignore")
-    print(json.dumps([trial(root, fmu_dir, **t) for t in json.loads(trials)]))
+    print(json.dumps([trial(root, fmu_dir, **t) for t in json.loads(trials)]), flush=True)
 
 
 if __name__ == "__main__":
     main()
+    # the child has loaded FMUs: it skips the interpreter's finalisation, where pythonfmu 0.7
+    # with SciPy's LAPACK loaded sometimes aborts the process after all output is written
+    os._exit(0)
