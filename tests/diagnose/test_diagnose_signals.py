@@ -200,3 +200,28 @@ def test_noise_free_slow_load_channel_is_left_as_recorded_limiting_case():
     load = 800.0 + 200.0 * np.sin(2 * np.pi * 0.2 * t)
     kept, how = smooth_channel(t, load)
     assert np.array_equal(kept, load) and how == Derivation()  # measured, kept
+
+
+@pytest.mark.parametrize("pole", [0.0, 0.95])
+def test_incoherent_noise_is_the_rms_of_noise_of_any_colour_beside_a_state_coherent_error(pole):
+    # known by construction: 40 sinusoidal strokes, a model error that is a function of the
+    # state (x, v) ten times the noise, plus AR(1) noise of unit RMS (white at pole 0). The
+    # state-matched estimate gives the noise's RMS; the white second-difference estimate sees
+    # sqrt((1 - p)(3 - p) / 3) of it (0.19 at p = 0.95, hand value)
+    from types import SimpleNamespace
+
+    from scipy.signal import lfilter
+
+    from guideway_fmu.diagnose import locate
+    t = np.linspace(0.0, 40.0, 20001)
+    w = 2 * np.pi
+    x, v, a = np.sin(w * t), w * np.cos(w * t), -w**2 * np.sin(w * t)
+    reversals = np.flatnonzero(np.diff(np.sign(v)) != 0) + 1
+    motion = SimpleNamespace(time=t, x=x, v=v, a=a, reversals=reversals)
+    noise = lfilter([1.0], [1.0, -pole], np.random.default_rng(3).standard_normal(t.size))
+    noise = (noise - noise.mean()) / noise.std()
+    residual = 10.0 * (x**2 * np.sign(v) + 0.3 * v / w) + noise
+    mask = np.ones(t.size, dtype=bool)
+    assert locate.incoherent_noise(motion, residual, mask) == pytest.approx(1.0, rel=0.1)
+    white = np.sqrt((1 - pole) * (3 - pole) / 3)
+    assert noise_rms(noise) == pytest.approx(white, rel=0.1)

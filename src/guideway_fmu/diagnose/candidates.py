@@ -426,13 +426,12 @@ class PreloadLoss(Candidate):
     law = staticmethod(friction_effects.preload_loss_friction)
     running_distance = True
     continuous = ("wear_distance",)
+    TABLE_NODES = (3, 4, 5, 7, 9, 12, 17)  # node counts of the monotone table, about sqrt 2 apart
 
     @staticmethod
     def exponent(ctx) -> float:
         """n of Q_0 ~ delta_0^n: 10/9 for Palmgren's rollers, 1.5 for Hertz balls."""
         return 10 / 9 if ctx.run.sections.get("guideway", {}).get("type") == "roller" else 1.5
-
-    TABLE_NODES = (3, 4, 5, 7, 9, 12, 17)  # about sqrt 2 apart
 
     def settings(self, ctx):
         total = max(float(ctx.distance[-1]), 1e-9)

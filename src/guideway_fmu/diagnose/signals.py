@@ -192,7 +192,8 @@ def sampling_step(time) -> float:
 
 
 class _Grid:
-    """Savitzky-Golay derivatives on a uniform grid at the :func:`sampling_step` of ``time``. Samples closer than CLUSTER steps
+    """Savitzky-Golay derivatives on a uniform grid at the :func:`sampling_step` of ``time``,
+    carried to the instants ``at`` (``time`` less a delay). Samples closer than CLUSTER steps
     are averaged into one before the cubic spline carries an uneven record onto the grid: a
     spline through near-coincident, quantised samples would ring."""
 

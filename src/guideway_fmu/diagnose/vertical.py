@@ -25,8 +25,8 @@ Ball guides are refused: the contact FMUs model roller rows.
 **The decision** (steps 1-4) simulates each model on the sample times with the monolithic
 reference's models fused into one right-hand side and integrated by DOP853 from sample to sample
 (reference/vertical.py: a few times faster and closer to the exact solution than the generic
-assembly's LSODA). Every candidate changes one physical parameter, fitted on the fit samples by Gauss-Newton
-steps with a secant slope (a handful of simulations) with the offset solved alongside:
+assembly's LSODA). Every candidate changes one physical parameter, fitted on the fit samples by
+Gauss-Newton steps with a secant slope (a handful of simulations) with the offset solved alongside:
 
 * ``lubricant_film`` (a dry baseline only): the EHL contact, its film law scaled through the
   lubricant's viscosity (the film grows as its 0.7th power);

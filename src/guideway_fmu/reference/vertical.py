@@ -93,8 +93,8 @@ class FusedVertical:
         ``rtol`` and the absolute tolerance rtol x the smallest nominal scale of the states
         (dop853 takes one: at least as tight on every state as the monolithic reference's rtol x
         each state's scale, at fewer right-hand sides than integrating the states over their
-        scales, whose extra arithmetic costs a quarter of a right-hand side). Raises ValueError for times it cannot take, RuntimeError when the
-        integration fails."""
+        scales, whose extra arithmetic costs a quarter of a right-hand side). Raises ValueError
+        for times it cannot take, RuntimeError when the integration fails."""
         times = np.asarray(times, dtype=float)
         steps = np.diff(times)
         if times.ndim != 1 or times.size < 2 or times[0] != self.t_start or np.any(steps <= 0):
