@@ -225,3 +225,39 @@ def test_incoherent_noise_is_the_rms_of_noise_of_any_colour_beside_a_state_coher
     assert locate.incoherent_noise(motion, residual, mask) == pytest.approx(1.0, rel=0.1)
     white = np.sqrt((1 - pole) * (3 - pole) / 3)
     assert noise_rms(noise) == pytest.approx(white, rel=0.1)
+
+
+def test_acceleration_from_a_noisy_velocity_takes_the_shortest_window_within_tolerance_by_hand():
+    # a velocity-only record with white tacho noise s: the order-7 first-derivative filter of w
+    # samples leaves s |h_w| of noise; the window is the shortest keeping that within the
+    # tolerance, and the derivation reports it
+    t = np.arange(4000) * 1e-3
+    w = 2 * np.pi * 0.37
+    s = 1e-4
+    v = 0.02 * w * np.cos(w * t) + s * np.random.default_rng(5).standard_normal(t.size)
+    tolerance = 0.02  # m/s^2
+    motion = derive_motion(t, {"feed_velocity": v}, tolerance)
+    how = motion.how["feed_acceleration"]
+    assert (how.source, how.derivative, how.order, how.noise_limit) == ("feed_velocity", 1, ORDER,
+                                                                        tolerance)
+    noise = [s * np.linalg.norm(savgol_coeffs(n, ORDER, deriv=1, delta=1e-3))
+             for n in (how.window - 2, how.window)]
+    assert noise[1] <= 1.05 * tolerance and noise[0] > 0.95 * tolerance  # s estimated
+    assert how.output_noise == pytest.approx(noise[1], rel=0.05)
+    truth = -0.02 * w**2 * np.sin(w * t)
+    inner = ~motion.ends
+    assert motion.ends.sum() == 2 * (how.window // 2)
+    error = np.sqrt(np.mean((motion.a - truth)[inner] ** 2))
+    assert error == pytest.approx(how.output_noise, rel=0.15)  # noise, no bias on a slow sine
+
+
+def test_ends_of_a_cubic_filtered_motion_are_marked_limiting_case():
+    # a position-derived velocity at a record's last samples is the filter's extrapolated
+    # polynomial: at a dwell it may have either sign. The half window at each end is marked
+    t = np.arange(2000) * 1e-3
+    x = np.round(1e-4 * np.clip(np.sin(2 * np.pi * 2 * t) * 1.3, -1, 1) / 1e-8) * 1e-8
+    motion = derive_motion(t, {"feed_position": x}, None)
+    half = motion.how["feed_velocity"].window // 2
+    assert half >= 2
+    assert motion.ends[:half].all() and motion.ends[-half:].all()
+    assert not motion.ends[half:-half].any()

@@ -19,7 +19,9 @@
    errors of the measured inputs such as accelerations differenced from encoder counts), which
    the synthetic null runs show. Significance and the share explained are judged against the
    white floor, a lower bound of the noise, so that coloured noise never hides a structured
-   gap a candidate explains. The reported noise floor is the larger of the white floor and the
+   gap a candidate explains; it includes, in quadrature, the noise a derived acceleration
+   carries into the model's m a (known from its filter: signals.Derivation.output_noise).
+   The reported noise floor is the larger of the white floor and the
    incoherent noise left by the reported model (the named one, the baseline with its law for
    ``unknown``, else the baseline).
    A record that passes its positions once cannot show friction repeating at the same positions,
@@ -134,7 +136,9 @@ class Naming:
     usable: np.ndarray
     baseline: Fit
     noise: float  # reported noise floor: max(white, incoherent noise of the reported model)
-    white_noise: float  # white (second-difference) floor of the baseline residual, held out
+    #: white (second-difference) floor of the baseline residual, held out, with the noise of a
+    #: derived acceleration's m a in quadrature
+    white_noise: float
     gap_base: float
     cross_gap: float  # cross-validated baseline gap over the white floor, all usable samples
     white: float
@@ -253,14 +257,17 @@ def decide(run_dir) -> Naming:
     bases = [calibrated(f) for f, _ in splits]
     baseline = bases[0]
     residual = y - baseline.prediction
-    noise = locate.noise_floor(y, residual, held)
+    # the white floor, with the noise the acceleration derived from a noisy channel brings
+    carried = run.moving_mass * (motion.how["feed_acceleration"].output_noise or 0.0)
+    noise = float(np.hypot(locate.noise_floor(y, residual, held), carried / np.ptp(y[held])))
     gap_base = locate.gap(y, baseline.prediction, held)
     white = locate.whiteness(residual, held)
     where = locate.locate(ctx, residual, usable)
 
     # the decision: cross-validated over the folds (every usable sample held out once)
     base_cv = out_of_fold([b.prediction for b in bases])
-    noise_cv = locate.noise_floor(y, residual, usable)
+    noise_cv = float(np.hypot(locate.noise_floor(y, residual, usable),
+                              carried / np.ptp(y[usable])))
     span = float(np.ptp(y[usable]))
     gap_cv = locate.gap(y, base_cv, usable)
     # the RMS of n white-noise samples has a relative standard error of 1 / sqrt(2 n)

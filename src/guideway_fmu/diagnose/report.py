@@ -123,8 +123,10 @@ def describe(name: str, d: Derivation | None) -> str:
     else:
         text = "measured"
     if d.noise_limit is not None:
-        text += (f", the shortest window whose noise from the position stays within "
+        text += (f", the shortest window whose noise from {d.source} stays within "
                  f"{d.noise_limit:.4g} m/s2 RMS (at most a quarter of a stroke)")
+    if d.output_noise is not None:
+        text += f"; it carries {d.output_noise:.4g} m/s2 RMS of that noise"
     if d.noise is not None:
         text += (f", the longest window whose residual stays within the channel's noise "
                  f"({d.noise:.4g} RMS)" if d.window else

@@ -8,13 +8,14 @@ second-difference estimate) exceeds 1e-4 of its range. The cubic window spans ab
 median time between velocity reversals, 5 to 51 samples, shorter where the motion has faster
 content (:func:`_window`).
 
-Where the position is recorded and the model states how much acceleration noise it can take
-(the workflow: a share of the force noise over the moving mass, since the acceleration enters
-as m a), the acceleration is the position's second derivative by a filter of polynomial order
-ORDER over the shortest window whose noise, the position's noise (an encoder's rounding)
-through the filter, stays within that (:func:`_acceleration_from_position`). A recorded
-acceleration channel is not used then: rigs difference it from the same encoder with a
-smoothing of their own, which lowers short ramps. Otherwise the acceleration comes from the
+Where the model states how much acceleration noise it can take (the workflow: a share of the
+force noise over the moving mass, since the acceleration enters as m a), the acceleration is
+the position's second derivative, or without a position and a recorded acceleration the
+velocity's first, by a filter of polynomial order ORDER over the shortest window whose noise,
+the channel's noise (an encoder's rounding) through the filter, stays within that
+(:func:`_acceleration_from`). A recorded acceleration channel is not used beside a position:
+rigs difference it from the same encoder with a smoothing of their own, which lowers short
+ramps. Otherwise the acceleration comes from the
 recorded acceleration, the velocity's or the position's derivative by the cubic filter, scaled
 by its least-squares gain against a short-window derivative of the position (or velocity)
 (:func:`_acceleration_gain`), which undoes on average how differencing and smoothing lower
@@ -33,7 +34,7 @@ from math import comb
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
-from scipy.interpolate import CubicSpline
+from scipy.interpolate import CubicHermiteSpline, CubicSpline
 from scipy.signal import savgol_coeffs, savgol_filter
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
@@ -52,6 +53,7 @@ ORDER = 7  # polynomial order of the filter that differentiates the position twi
 LONGEST = 101
 NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
 SMOOTHEST = 513  # longest window [samples] of smooth_channel
+GAP = 1.5  # intervals over this many nominal steps are filled in Motion.path
 CLUSTER = 0.1  # samples closer than this many grid steps are averaged before interpolation
 
 
@@ -137,7 +139,8 @@ class Derivation:
     the order of the derivative taken (-1: integrated by the trapezoid rule); ``window`` [samples]
     and ``order``: the zero-phase Savitzky-Golay filter applied (window 0: none), at the grid step
     ``step`` [s], on a uniform grid built by cubic splines unless ``uniform``; ``noise_limit``
-    [m/s^2]: the acceleration noise that chose the window; ``gain`` [-]: a least-squares scale
+    [m/s^2]: the acceleration noise that chose the window, ``output_noise`` [m/s^2] the noise RMS
+    the window leaves (the channel's noise through the filter); ``gain`` [-]: a least-squares scale
     applied; ``recorded_unused``: a recorded channel of the same name is set aside; ``dequantised``:
     encoder count steps filtered out; ``noise``: the channel's noise RMS where it was smoothed
     for being noisy."""
@@ -153,6 +156,7 @@ class Derivation:
     recorded_unused: bool = False
     dequantised: bool = False
     noise: float | None = None
+    output_noise: float | None = None
 
 
 @dataclass
@@ -173,6 +177,27 @@ class Motion:
     ends: np.ndarray
     standstill_speed: float
     rest_band: float | None
+
+    def path(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(time [s], position [m], velocity [m/s], acceleration [m/s^2], indices of the samples
+        in it): the motion on a path dense enough for laws that follow it (Dahl states, the
+        running distance) and for a replay of it. Where a gap between samples exceeds GAP
+        nominal steps (a dropout, a bursty record), points at the nominal step are inserted,
+        position and velocity by cubic Hermite interpolation of the samples' position and
+        velocity, so that a reversal inside the gap is travelled (the acceleration linearly);
+        else the path is the samples."""
+        step = sampling_step(self.time)
+        gaps = np.flatnonzero(np.diff(self.time) > GAP * step)
+        if gaps.size == 0:
+            return self.time, self.x, self.v, self.a, np.arange(self.time.size)
+        times, first = np.unique(self.time, return_index=True)
+        inserted = [np.linspace(self.time[i], self.time[i + 1],
+                                int(np.ceil((self.time[i + 1] - self.time[i]) / step)) + 1)[1:-1]
+                    for i in gaps]
+        fine = np.union1d(times, np.concatenate(inserted))
+        spline = CubicHermiteSpline(times, self.x[first], self.v[first])
+        return (fine, spline(fine), spline(fine, 1), np.interp(fine, times, self.a[first]),
+                np.searchsorted(fine, self.time))
 
     def since_reversal(self) -> tuple[np.ndarray, np.ndarray]:
         """Time [s] and displacement [m] since the last reversal (since the start before the first)."""
@@ -235,6 +260,12 @@ class _Grid:
         """A channel at the output instants, unfiltered."""
         return np.asarray(y, dtype=float) if self.at is self.time else self.back(self.on_grid(y))
 
+    def ends(self, window):
+        """The samples within half a ``window`` [samples] of either end (fewer than window // 2
+        steps in), where a filter extrapolates its polynomial."""
+        reach = (window // 2 - 0.5) * self.step
+        return (self.time < self.time[0] + reach) | (self.time > self.time[-1] - reach)
+
     def derivation(self, source="", derivative=0, window=None, order=3, **details) -> Derivation:
         """The :class:`Derivation` of :meth:`filter` with these arguments."""
         window = self.window if window is None else min(window, self.longest)
@@ -273,36 +304,34 @@ def _acceleration_gain(grid: _Grid, columns: dict, a) -> float:
     return float(np.dot(short, a) / power) if power > 0.0 else 1.0
 
 
-def _acceleration_from_position(grid: _Grid, position, rounding, tolerance, per_stroke) -> tuple:
-    """(acceleration [m/s^2], window [samples], ends [bool mask]): the second derivative of
-    ``position`` [m] by the ORDER filter over the shortest odd window whose output noise, the
-    position's noise times the norm of the filter's coefficients, is at most ``tolerance``
-    [m/s^2] (the least bias the noise allows; at least NEGLIGIBLE of the acceleration's range,
-    which matters where the force is noise-free), over at most a quarter of ``per_stroke``, the
-    median samples between reversals, and at most LONGEST samples. The position's noise is the
-    ``rounding`` noise of recorded values on a lattice (an encoder's counts; the MAD of their
-    differences is biased by the lattice, and after interpolating an uneven record onto the grid
-    misses the rounding errors it averages), else that of its fourth differences on the grid (a
-    smooth motion's curvature hardly shows in them)."""
-    on_grid = grid.on_grid(position)
+def _acceleration_from(grid: _Grid, channel, derivative, sigma, tolerance, per_stroke) -> tuple:
+    """(acceleration [m/s^2], window [samples], ends [bool mask], its noise RMS [m/s^2]): the
+    ``derivative``-th derivative (2 of a position [m], 1 of a velocity [m/s]) of ``channel`` by
+    the ORDER filter over the shortest odd window whose output noise, the channel's noise ``sigma`` times the norm
+    of the filter's coefficients, is at most ``tolerance`` [m/s^2] (the least bias the noise
+    allows; at least NEGLIGIBLE of the acceleration's range, which matters where the force is
+    noise-free), over at most a quarter of ``per_stroke``, the median samples between reversals,
+    and at most LONGEST samples. ``sigma`` 0: the noise of the channel's fourth differences on the
+    grid (a smooth motion's curvature hardly shows in them)."""
+    on_grid = grid.on_grid(channel)
     longest = min(grid.longest, LONGEST, max(2 * int(per_stroke // 8) + 1, ORDER + 2))
-    window = longest
-    sigma = rounding or noise_rms(on_grid, order=4)
-    smooth = savgol_filter(on_grid, longest, ORDER, deriv=2, delta=grid.step, mode="interp")
+    sigma = sigma or noise_rms(on_grid, order=4)
+    smooth = savgol_filter(on_grid, longest, ORDER, deriv=derivative, delta=grid.step,
+                           mode="interp")
     allowed = max(tolerance, NEGLIGIBLE * float(np.ptp(smooth)))
-    for w in range(ORDER + 2, longest, 2):
-        h = savgol_coeffs(w, ORDER, deriv=2, delta=grid.step)
-        if sigma * float(np.linalg.norm(h)) <= allowed:
-            window = w
-            break
-    a = grid.filter(position, deriv=2, window=window, order=ORDER)
+
+    def noise(w):
+        return sigma * float(np.linalg.norm(savgol_coeffs(w, ORDER, deriv=derivative,
+                                                          delta=grid.step)))
+
+    window = next((w for w in range(ORDER + 2, longest, 2) if noise(w) <= allowed), longest)
+    a = grid.filter(channel, deriv=derivative, window=window, order=ORDER)
     # within half a window of the ends the filter extrapolates its polynomial, which at ORDER
     # amplifies the noise many times: the cubic fit over the same window takes over there (still
     # an extrapolation: the ends are marked)
-    reach = (window // 2) * grid.step
-    ends = (grid.time < grid.time[0] + reach) | (grid.time > grid.time[-1] - reach)
-    a[ends] = grid.filter(position, deriv=2, window=window)[ends]
-    return a, window, ends
+    ends = grid.ends(window)
+    a[ends] = grid.filter(channel, deriv=derivative, window=window)[ends]
+    return a, window, ends, noise(window)
 
 
 def derive_motion(time, columns: dict, acceleration_noise: float | None,
@@ -353,18 +382,26 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None,
     moving = np.flatnonzero(~standstill)
     signs = np.sign(v[moving])
     reversals = moving[1:][signs[1:] != signs[:-1]]
+    per_stroke = np.median(np.diff(reversals)) if reversals.size > 2 else time.size
     if "feed_position" in columns and acceleration_noise is not None:
-        per_stroke = np.median(np.diff(reversals)) if reversals.size > 2 else time.size
-        a, window, ends = _acceleration_from_position(grid, columns["feed_position"], rounding,
-                                                      acceleration_noise, per_stroke)
+        a, window, ends, noise = _acceleration_from(grid, columns["feed_position"], 2, rounding,
+                                                    acceleration_noise, per_stroke)
         if rounding > 0.0:  # encoder counts: de-quantised
             x = grid.filter(columns["feed_position"], window=window, order=ORDER)
             how["feed_position"] = grid.derivation(window=window, order=ORDER, dequantised=True)
         how["feed_acceleration"] = grid.derivation(
             "feed_position", 2, window, ORDER, noise_limit=acceleration_noise,
-            recorded_unused="feed_acceleration" in columns)
+            output_noise=noise, recorded_unused="feed_acceleration" in columns)
+    elif ("feed_velocity" in columns and "feed_acceleration" not in columns
+          and acceleration_noise is not None):  # the velocity's noise limits the window alike
+        raw = columns["feed_velocity"]
+        a, window, ends, noise = _acceleration_from(grid, raw, 1, channel_noise(raw),
+                                                    acceleration_noise, per_stroke)
+        how["feed_acceleration"] = grid.derivation("feed_velocity", 1, window, ORDER,
+                                                   noise_limit=acceleration_noise,
+                                                   output_noise=noise)
     else:
-        ends = np.zeros(time.size, dtype=bool)
+        ends = grid.ends(grid.window)
         if "feed_acceleration" in columns:
             a = measured("feed_acceleration")
         elif "feed_velocity" in columns:  # the derivative of the velocity as measured (or
