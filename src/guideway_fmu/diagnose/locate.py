@@ -3,15 +3,17 @@ residual against time, motion, reversals, running distance and frequency."""
 from __future__ import annotations
 
 import numpy as np
+from scipy.signal import lombscargle
 from scipy.spatial import cKDTree
 
-from .signals import noise_rms
+from .signals import noise_rms, sampling_step
 
 BLOCK = 25  # samples per block (at least); every third block is held out
 FOLDS = 3  # cross-validation folds: blocks k, k + 3, ... held out in fold k
 MAX_BLOCKS = 600
 BINS = 20  # quantile bins of the residual-against-signal statistics
 PAIRS = 3000  # samples whose state-matched partner the incoherent noise estimate looks for
+REFINE = 41  # trial frequencies over two bins of the spectrum refining a peak
 NEIGHBOURS = 32  # nearest states searched for a partner from another pass
 
 
@@ -107,7 +109,7 @@ def explained(residual, signal, mask) -> float:
 
 def spectrum(time, residual, mask):
     """(frequency [Hz], amplitude) of the residual (zero where not ``mask``) on a uniform grid."""
-    step = float(np.median(np.diff(time)))
+    step = sampling_step(time)
     grid = np.arange(time[0], time[-1], step)
     r = np.interp(grid, time, np.where(mask, residual, 0.0))
     amplitude = 2.0 * np.abs(np.fft.rfft(r * np.hanning(r.size))) / r.size
@@ -116,7 +118,9 @@ def spectrum(time, residual, mask):
 
 def peak_frequencies(time, residual, mask, count: int = 3) -> list[float]:
     """Up to ``count`` frequencies [Hz] whose residual amplitude stands 8x above the median,
-    ignoring the lowest 3 bins (trends)."""
+    ignoring the lowest 3 bins (trends), each refined to the maximum of the Lomb-Scargle
+    periodogram of the samples on ``mask`` within a bin of the spectrum's peak: a sinusoid
+    fitted at a frequency off by a bin drifts half a cycle over the record."""
     freq, amp = spectrum(time, residual, mask)
     if freq.size < 8:
         return []
@@ -127,7 +131,13 @@ def peak_frequencies(time, residual, mask, count: int = 3) -> list[float]:
             break
         if all(abs(freq[i] - f) > 3 * freq[1] for f in found):
             found.append(float(freq[i]))
-    return found
+    t, r = np.asarray(time)[mask], np.asarray(residual)[mask]
+    r = r - r.mean()
+    refined = []
+    for f in found:
+        trial = np.linspace(f - freq[1], f + freq[1], REFINE)
+        refined.append(float(trial[np.argmax(lombscargle(t, r, 2.0 * np.pi * trial))]))
+    return refined
 
 
 def signals(ctx) -> dict[str, np.ndarray]:
