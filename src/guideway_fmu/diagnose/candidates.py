@@ -47,12 +47,15 @@ class Context:
     elements: int  # rolling elements per row (1 without [guideway])
     sign: np.ndarray = field(init=False)
     distance: np.ndarray = field(init=False)
+    path: tuple = field(init=False)  # (position [m] along Motion.path, the samples' indices)
     load: np.ndarray | None = field(init=False)  # N, the normal_force channel, smoothed
     load_how: Derivation | None = field(init=False)  # None: not recorded
 
     def __post_init__(self):
         self.sign = regularised_sign(self.motion.v, self.velocity_tolerance)
-        self.distance = friction_effects.running_distance(self.motion.x)
+        _, x, _, _, at = self.motion.path()
+        self.path = (x, at)
+        self.distance = friction_effects.running_distance(x)[at]
         self.load, self.load_how = (smooth_channel(self.motion.time, self.run.columns["normal_force"])
                                     if "normal_force" in self.run.columns else (None, None))
 
@@ -277,12 +280,15 @@ class PreslidingHysteresis(Candidate):
         return float(np.sign(ctx.motion.v[0])) if not ctx.motion.standstill[0] else 0.0
 
     def distances(self, ctx):
-        """12 pre-sliding distances [m], geometric, from a thousandth of the median motion per
-        sample (a distance of a few encoder counts still shows in the samples right after a
-        reversal) to a tenth of the stroke."""
+        """12 pre-sliding distances [m]: 11 geometric, from a thousandth of the median motion
+        per sample (a distance of a few encoder counts still shows in the samples right after a
+        reversal) to a tenth of the stroke, and a thousandth of the least of them, a rigid
+        element: it switches within the first sample that moves at all, as the Coulomb part of
+        friction does where a rig starts from a dwell at a few nm per sample."""
         step = np.median(np.abs(np.diff(ctx.motion.x)))
         stroke = np.ptp(ctx.motion.x)
-        return np.geomspace(max(1e-3 * step, 1e-7 * stroke, 1e-10), max(0.1 * stroke, 1e-8), 12)
+        lowest = max(1e-3 * step, 1e-7 * stroke, 1e-10)
+        return np.r_[1e-3 * lowest, np.geomspace(lowest, max(0.1 * stroke, 1e-8), 11)]
 
     def settings(self, ctx):
         d = self.distances(ctx)
@@ -292,11 +298,12 @@ class PreslidingHysteresis(Candidate):
     def state(self, ctx, distance):
         if not self._states or self._states[0] is not ctx:
             d = self.distances(ctx)
-            z = friction_effects.dahl_state(ctx.motion.x, d, self.z_start(ctx))
+            z = friction_effects.dahl_state(ctx.path[0], d, self.z_start(ctx))[ctx.path[1]]
             self._states = (ctx, {float(v): z[:, i] for i, v in enumerate(d)})
         cache = self._states[1]
         if distance not in cache:  # off the grid (refinement)
-            cache[distance] = friction_effects.dahl_state(ctx.motion.x, distance, self.z_start(ctx))
+            cache[distance] = friction_effects.dahl_state(ctx.path[0], distance,
+                                                          self.z_start(ctx))[ctx.path[1]]
         return cache[distance]
 
     def _evaluate(self, ctx, fit_mask, setting):

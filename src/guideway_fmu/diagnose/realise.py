@@ -1,7 +1,7 @@
 """Step 5 of the discrepancy workflow: the named model as a co-simulation scenario
 (cosim/system.py format), run through the FMUs.
 
-Three FMUs, stepped Gauss-Seidel at the record's median sampling interval:
+Three FMUs, stepped Gauss-Seidel at the record's nominal sampling interval (signals.sampling_step):
 FeedKinematics (profile "replay" of the motion the model is driven with) -> a friction FMU
 (FrictionCoulomb for the baseline, the effect's FMU for an augmented model) -> HorizontalRig
 (drive_force = m a - F_friction + offset). The outputs are interpolated to the sample times.
@@ -19,17 +19,18 @@ from ..cosim import master, system as cosim_system
 from . import locate
 from .candidates import Context, Fit
 from .decide import Naming
+from .signals import sampling_step
 
 RIG_FMUS = ("FeedKinematics", "HorizontalRig")
 
 
 def write_replay(m, path: Path) -> Path:
     """The motion ``m`` (signals.Motion) the model is driven with, as the FeedKinematics replay
-    table."""
+    table, along its path (Motion.path: a reversal inside a dropout is travelled)."""
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["time", "feed_position", "feed_velocity", "feed_acceleration"])
-        writer.writerows(np.column_stack([m.time, m.x, m.v, m.a]).tolist())
+        writer.writerows(np.column_stack(m.path()[:4]).tolist())
     return path
 
 
@@ -37,7 +38,7 @@ def write_scenario(ctx: Context, fit: Fit, path: Path, replay: Path, fmu_dir: Pa
                    description: str) -> Path:
     """The scenario TOML of the model ``fit`` (FMU paths relative to the scenario file)."""
     m, channel = ctx.motion, ctx.run.channel
-    steps = max(int(round((m.time[-1] - m.time[0]) / np.median(np.diff(m.time)))), 1)
+    steps = max(int(round((m.time[-1] - m.time[0]) / sampling_step(m.time))), 1)
     fmus = Path(fmu_dir).resolve()
     offset = "drive_offset" if channel == "drive_force" else "friction_offset"
     b = cosim_system.Builder(name, description).experiment(
