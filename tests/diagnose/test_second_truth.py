@@ -81,6 +81,11 @@ def test_a_missing_mass_cannot_hide_where_friction_is_measured(tmp_path, record_
         st.draw(tmp_path, "unmodeled_mass", record_class, seed=1, n_samples=N)
 
 
+def test_ball_to_ball_contact_is_not_drawn_on_tribometer_strokes(tmp_path):
+    with pytest.raises(ValueError, match="far shorter than a ball"):
+        st.draw(tmp_path, "ball_to_ball_contact", "tribometer", seed=1, n_samples=N)
+
+
 @pytest.mark.parametrize("arguments,name", [
     (("stiction", "drive", 1, 1.0, N), "effect"),
     (("none", "rig", 1, 1.0, N), "record_class"),

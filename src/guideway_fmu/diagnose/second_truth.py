@@ -49,7 +49,7 @@ distance [m], the integral of |v| from the record's start)
     ``F = sgn(v) F_c [1 - D u / (1 + u^p)^(1/p)]``, ``u = s / s_k``: friction falls linearly with
     running distance, then saturates at the loss ``D`` beyond the knee distance ``s_k``
     (sharpness ``p`` in [2, 6]).
-``ball_to_ball_contact`` (ball guides)
+``ball_to_ball_contact`` (ball guides; not on tribometer strokes, see :func:`allowed`)
     ``F = sgn(v) [F_c + k F_c P(s)]``: ``P`` is piecewise constant in running distance, a new
     gamma-distributed level (mean 1) every 1.5-4 ball diameters (at least 12 cells per record).
 ``load_dependent_friction`` (out of vocabulary: expected answer ``unknown``)
@@ -157,9 +157,12 @@ class Truth:
 
 
 def allowed(effect: str, record_class: str) -> bool:
-    """Whether ``effect`` can appear in a record of ``record_class`` (a missing mass cannot show
-    where friction is measured directly)."""
-    return not (effect == "unmodeled_mass" and record_class not in DRIVE_CLASSES)
+    """Whether ``effect`` can appear in a record of ``record_class``: a missing mass cannot show
+    where friction is measured directly, and ball-to-ball contact not on a tribometer (strokes
+    of 50-500 um roll each ball back and forth over a tenth of its diameter or less: no new
+    arrangement of balls, so no level changing with the running distance)."""
+    return not ((effect == "unmodeled_mass" and record_class not in DRIVE_CLASSES)
+                or (effect == "ball_to_ball_contact" and record_class == "tribometer"))
 
 
 def draw(out_dir, effect: str, record_class: str, seed: int, *, size: float = 1.0,
@@ -283,8 +286,11 @@ def _check_arguments(effect, record_class, seed, size, n_samples):
     if record_class not in CLASSES:
         raise ValueError(f"record_class {record_class!r} is not one of: {', '.join(CLASSES)}")
     if not allowed(effect, record_class):
-        raise ValueError(f"record_class {record_class!r} measures friction directly "
-                         f"(moving_mass 0): effect {effect!r} cannot appear in it")
+        why = ("its strokes are far shorter than a ball" if record_class == "tribometer"
+               and effect == "ball_to_ball_contact" else
+               "it measures friction directly (moving_mass 0)")
+        raise ValueError(f"record_class {record_class!r}: effect {effect!r} cannot appear in "
+                         f"it: {why}")
     if not _is_int(seed) or seed < 0:
         raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     if not _is_real(size) or not math.isfinite(size) or size < 0:
