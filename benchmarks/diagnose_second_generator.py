@@ -3,7 +3,8 @@ independent generator (diagnose/second_truth.py), by effect and by record class,
 never tuned on (steps 1-4 only, no co-simulation).
 
     python benchmarks/diagnose_second_generator.py [--draws 4] [--samples 4000] [--jobs 2]
-                                                   [--seed 60000] [--page docs/diagnosis-second-generator.md]
+        [--seed 60000] [--classes CLASS ...] [--effects EFFECT ...]
+        [--page docs/diagnosis-second-generator.md]
 
 For every allowed (effect, class) pair, ``--draws`` records of size 1 (the effect's visible part
 8 times the noise) from seed SEED + i. Prints every wrong answer with its reason, then the
@@ -60,11 +61,17 @@ def main(argv=None) -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--seed", type=int, default=60000,
                         help="seed of draw 0 (default 60000; 50000-50003 served development)")
+    parser.add_argument("--classes", nargs="+", default=second_truth.CLASSES,
+                        choices=second_truth.CLASSES, metavar="CLASS",
+                        help="record classes to draw (default all)")
+    parser.add_argument("--effects", nargs="+", default=second_truth.EFFECTS,
+                        choices=second_truth.EFFECTS, metavar="EFFECT",
+                        help="hidden effects to draw (default all)")
     parser.add_argument("--page", default=str(Path(__file__).resolve().parents[1] / "docs" /
                                               "diagnosis-second-generator.md"))
     args = parser.parse_args(argv)
     jobs = [(effect, record_class, args.seed + i, args.samples)
-            for effect in second_truth.EFFECTS for record_class in second_truth.CLASSES
+            for effect in args.effects for record_class in args.classes
             if second_truth.allowed(effect, record_class) for i in range(args.draws)]
     with Pool(args.jobs) as pool:
         rows = pool.map(draw, jobs, chunksize=1)
@@ -84,11 +91,16 @@ def main(argv=None) -> None:
             wrong.append(row)
     for row in wrong:
         print(row, file=sys.stderr)
+    subset = "".join(f" --{name} {' '.join(chosen)}" for name, chosen, every in
+                     (("classes", args.classes, second_truth.CLASSES),
+                      ("effects", args.effects, second_truth.EFFECTS))
+                     if tuple(chosen) != tuple(every))
     total = sum(c[1] for c in by_effect.values())
     named_right = sum(c[0] for c in by_effect.values())
     lines = ["# The workflow on the second generator's records", "",
              f"Written by `python benchmarks/diagnose_second_generator.py --draws {args.draws} "
-             f"--samples {args.samples} --seed {args.seed}`; rerun it after changing the workflow.",
+             f"--samples {args.samples} --seed {args.seed}{subset}`; rerun it after changing the "
+             "workflow.",
              "",
              "Records of `diagnose/second_truth.py`, a generator written from the format and the "
              "friction literature without reading the first one, on seeds the workflow was never "
