@@ -47,6 +47,7 @@ AMBIGUOUS = 3.0
 #: within AMBIGUOUS widths the sign is a numerical smoothing (tanh 3 = 0.995), not physics
 SIGN_WIDTH = 1e-3
 SHORT = 7  # samples of the cubic filter giving the unbiased acceleration the gain refers to
+CONFIDENCE = 3.0  # noise RMS either side of an estimate: its interval in the ICI rule
 ORDER = 7  # polynomial order of the filter that differentiates the position twice
 #: longest window of that filter: scipy's coefficients of order 7 lose their precision beyond
 #: about 150 samples (their sum is 0.002 instead of 0 at 101 samples, 1800 at 201)
@@ -307,12 +308,17 @@ def _acceleration_gain(grid: _Grid, columns: dict, a) -> float:
 def _acceleration_from(grid: _Grid, channel, derivative, sigma, tolerance, per_stroke) -> tuple:
     """(acceleration [m/s^2], window [samples], ends [bool mask], its noise RMS [m/s^2]): the
     ``derivative``-th derivative (2 of a position [m], 1 of a velocity [m/s]) of ``channel`` by
-    the ORDER filter over the shortest odd window whose output noise, the channel's noise ``sigma`` times the norm
-    of the filter's coefficients, is at most ``tolerance`` [m/s^2] (the least bias the noise
-    allows; at least NEGLIGIBLE of the acceleration's range, which matters where the force is
-    noise-free), over at most a quarter of ``per_stroke``, the median samples between reversals,
-    and at most LONGEST samples. ``sigma`` 0: the noise of the channel's fourth differences on the
-    grid (a smooth motion's curvature hardly shows in them)."""
+    the ORDER filter over the shortest odd window whose output noise, the channel's noise
+    ``sigma`` times the norm of the filter's coefficients, is at most ``tolerance`` [m/s^2]
+    (the least bias the noise allows; at least NEGLIGIBLE of the acceleration's range, which
+    matters where the force is noise-free), over at most a quarter of ``per_stroke``, the median
+    samples between reversals, and at most LONGEST samples. ``sigma`` 0: the noise of the
+    channel's fourth differences on the grid (a smooth motion's curvature hardly shows in them).
+
+    Where that window is biased (a ramp shorter than it), a shorter one takes over, sample by
+    sample, by the intersection of confidence intervals (Katkovnik's ICI rule): the longest of
+    the windows up to it whose interval, the estimate +- CONFIDENCE times its noise, still
+    meets those of all shorter windows. The noise RMS returned is over the samples."""
     on_grid = grid.on_grid(channel)
     longest = min(grid.longest, LONGEST, max(2 * int(per_stroke // 8) + 1, ORDER + 2))
     sigma = sigma or noise_rms(on_grid, order=4)
@@ -325,13 +331,25 @@ def _acceleration_from(grid: _Grid, channel, derivative, sigma, tolerance, per_s
                                                           delta=grid.step)))
 
     window = next((w for w in range(ORDER + 2, longest, 2) if noise(w) <= allowed), longest)
-    a = grid.filter(channel, deriv=derivative, window=window, order=ORDER)
+    windows = np.unique(2 * (np.geomspace(ORDER + 2, window, 8) // 2).astype(int) + 1)
+    low = np.full(grid.at.size, -np.inf)
+    high = np.full(grid.at.size, np.inf)
+    a = np.empty(grid.at.size)
+    spread = np.empty(grid.at.size)
+    consistent = np.ones(grid.at.size, dtype=bool)
+    for w in windows:
+        estimate = grid.filter(channel, deriv=derivative, window=int(w), order=ORDER)
+        low = np.maximum(low, estimate - CONFIDENCE * noise(w))
+        high = np.minimum(high, estimate + CONFIDENCE * noise(w))
+        consistent &= low <= high
+        a[consistent] = estimate[consistent]
+        spread[consistent] = noise(w)
     # within half a window of the ends the filter extrapolates its polynomial, which at ORDER
     # amplifies the noise many times: the cubic fit over the same window takes over there (still
     # an extrapolation: the ends are marked)
     ends = grid.ends(window)
     a[ends] = grid.filter(channel, deriv=derivative, window=window)[ends]
-    return a, window, ends, noise(window)
+    return a, window, ends, float(np.sqrt(np.mean(spread[~ends] ** 2)))
 
 
 def derive_motion(time, columns: dict, acceleration_noise: float | None,
