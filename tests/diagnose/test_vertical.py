@@ -226,3 +226,45 @@ def test_realisation_refines_its_macro_step_until_the_fmus_reproduce_the_decided
     step = cosim_system.load(tmp_path / "out" / "augmented.toml").experiment.step
     assert step < vertical.COSIM_STEP
     assert d["gap_after"] < 1.3 * d["noise_floor"]
+
+
+def test_an_exact_load_column_puts_no_noise_into_the_response_limiting_case(tmp_path, record,
+                                                                            fmu_dir):
+    rig = VerticalRig(load_run(record), tmp_path / "model", fmu_dir)
+    assert rig.input_noise(rig.base) == 0.0
+
+
+def test_load_cell_noise_response_is_that_of_an_undamped_resonance_by_hand(tmp_path, record,
+                                                                         fmu_dir):
+    # white noise s on a steady load column (linearly interpolated, step dt) drives the dry,
+    # undamped rows like a mass-spring: the displacement's variance grows as s^2 dt t /
+    # (2 m^2 w^2), its RMS over a record of T is s sqrt(dt T) / (2 m w) (w: the natural
+    # frequency), times w^2 for the acceleration plus the load's own s / m. The response holds
+    # the few noise components within about 1 / T of f_n, so one realisation's RMS (and the
+    # estimate from two) scatters by a factor of 2-3 about that: within a factor 3, and twice
+    # the noise gives twice the response (linear rows). (Under the record's own load of
+    # thousands of N the rows unload and the response is far from linear.)
+    run = load_run(record)
+    data = np.genfromtxt(record / "data.csv", delimiter=",", names=True)
+    sigma = 2.0
+    noisy = tmp_path / "run"
+    noisy.mkdir()
+    # the dry rows: undamped (the film's squeeze damps)
+    (noisy / "rig.toml").write_text((record / "rig.toml").read_text().replace(
+        'contact = "ehl"', 'contact = "dry_hertz"'))
+    columns = {name: data[name] for name in data.dtype.names}
+    columns["normal_force"] = 200.0 + sigma * np.random.default_rng(3).standard_normal(data.size)
+    np.savetxt(noisy / "data.csv", np.column_stack(list(columns.values())), delimiter=",",
+               header=",".join(columns), comments="", fmt="%.12g")
+    rig = VerticalRig(load_run(noisy), tmp_path / "model", fmu_dir)
+    assert rig.base.contact == "dry_hertz"
+    response = rig.input_noise(rig.base)
+    t = run.time
+    w = 2 * math.pi * rig.natural_frequency(rig.base)
+    by_hand = sigma * math.sqrt(float(np.median(np.diff(t))) * float(t[-1] - t[0])) / (
+        2 * rig.base.mass * w)
+    if run.channel == "vertical_acceleration":
+        by_hand = math.hypot(by_hand * w**2, sigma / rig.base.mass)
+    assert by_hand / 3 < response < 3 * by_hand
+    rig.normal = 200.0 + 2 * (rig.normal - 200.0)
+    assert rig.input_noise(rig.base) == pytest.approx(2 * response, rel=0.05)

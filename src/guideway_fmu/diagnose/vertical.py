@@ -58,6 +58,7 @@ from ..physics import guideway as gw
 from ..physics import guideway_contact
 from ..physics.carriage import LENGTH_SCALE, STANDARD_GRAVITY
 from ..physics.film import LineContact
+from ..physics.force_table import ForceTable
 from ..physics.roller_contact import EXPONENT, MICRON, palmgren_stiffness
 from ..reference.vertical import FusedVertical
 from ..scenarios import couple_contact
@@ -66,7 +67,7 @@ from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, SIGNIFICANT_ERRORS, UNR
     _bic, _confidence
 from .realise import write_replay
 from .run_io import MeasuredRun
-from .signals import derive_motion
+from .signals import NOISY, derive_motion, noise_rms, rounding_noise
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
 FMUS = ("FeedKinematics", "ForceTable", "VerticalDynamics", *CONTACT_FMUS.values())
@@ -75,6 +76,7 @@ CHANNELS = {"vertical_displacement": ("Carriage.y", "m"),
 COSIM_STEP = 4e-6  # s, largest macro step of the realisation (the paper scenarios' coarsest)
 REFINEMENTS = 2  # halvings of the realisation's macro step at most
 REALISED = 0.3  # the realisation's RMS deviation from the decision's model, in noise floors
+INPUT_NOISE_SEED = 0  # of the white noise VerticalRig.input_noise drives the model with
 SIMULATIONS = 6  # most simulations a candidate's fit takes
 STEP, TRUST = 0.05, 0.7  # the fit's first step and its largest, in its parameter (fit_candidate)
 TUNED_SPAN = 0.003  # half-width of the search around the value matching the natural frequency
@@ -283,6 +285,28 @@ class VerticalRig:
         b.plots(time=[self.column, "Contact.F_upper"], spectrum=[self.column])
         return b.system()
 
+    def input_noise(self, setting: Setting) -> float:
+        """RMS [channel units] of what the normal force channel's noise puts into the response
+        of ``setting``: the model driven twice with the channel plus independent white noise of
+        the channel's RMS (the least estimate from differences of order 2, 4 and 6: a smooth
+        load only adds to each), the RMS of the difference over sqrt 2. The model is undamped
+        near its natural frequency, where the noise's share piles up over the record's periods.
+        0 where the channel is not recorded or is exact (noise under NOISY of its range)."""
+        if "normal_force" not in self.run.columns:
+            return 0.0
+        sigma = max(min(noise_rms(self.normal, order) for order in (2, 4, 6)),
+                    rounding_noise(self.normal))
+        if sigma <= NOISY * float(np.ptp(self.normal)):
+            return 0.0
+        rng = np.random.default_rng(INPUT_NOISE_SEED)
+        fused = FusedVertical(self.system(setting), self.fused)
+        responses = []
+        for _ in range(2):
+            fused.load = ForceTable(self.run.time, self.normal
+                                    + sigma * rng.standard_normal(self.normal.size))
+            responses.append(fused.simulate(self.run.time, self.rtol, [self.column])[self.column])
+        return float(np.sqrt(np.mean((responses[0] - responses[1]) ** 2) / 2.0))
+
     def predict(self, setting: Setting) -> np.ndarray:
         """The compared channel of ``setting`` at the sample times, without offset (the
         reference's models in one fused right-hand side, reference/vertical.py; cached)."""
@@ -465,6 +489,8 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     # generator's preload and mass records)
     noise = min(locate.noise_floor(y, y - model.prediction, held)
                 for model in [baseline] + [fitted for _, fitted, _ in ranked[:1]])
+    # with the response to the load cell's noise, which the model is driven with as exact
+    noise = float(np.hypot(noise, rig.input_noise(baseline.setting) / np.ptp(y[held])))
     significant = bool(gap_base > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * held.sum())) * noise)
 
     def share(gap_model):
