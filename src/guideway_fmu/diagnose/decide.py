@@ -40,6 +40,7 @@ from scipy.optimize import minimize_scalar
 from . import locate, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          candidates_for)
+from ..physics.roller_friction import regularised_sign
 from .run_io import MeasuredRun, load_run
 from .signals import derive_motion, noise_rms, sampling_step
 
@@ -169,7 +170,7 @@ def motion_of(run: MeasuredRun, delay: float = 0.0):
 def channel_delay(ctx: Context, usable) -> float:
     """The delay [s] of the compared channel behind the motion: the shift, in whole nominal
     sampling intervals (signals.sampling_step) up to MAX_DELAY, that lets the baseline (Coulomb
-    level, m a, offset) fit it best (on an uneven record refined between the neighbouring steps:
+    level, m a, offset) driven by the motion that much earlier fit it best (on an uneven record refined between the neighbouring steps:
     its nominal period is not the mean step; on an even one a fractional shift would blur the
     Coulomb switch the search aligns), where that cuts the baseline's residual sum of squares in
     excess of the noise's below DELAY_GAIN of the unshifted one's (a force that switches a few
@@ -180,15 +181,20 @@ def channel_delay(ctx: Context, usable) -> float:
     only) it would otherwise hide the gain."""
     t = ctx.motion.time
     step = sampling_step(t)
-    inner = usable & (t > t[0] + MAX_DELAY * step) & (t < t[-1] - MAX_DELAY * step)
-    design = np.column_stack([BASELINE.columns(ctx, {})[:, 0], np.ones(t.size)])[inner]
-
-    def residual(shift):
-        target = (np.interp(t + shift, t, ctx.y) - ctx.fixed)[inner]
-        coef, *_ = np.linalg.lstsq(design, target, rcond=None)
-        return target - design @ coef
-
     shifts = step * np.arange(-MAX_DELAY, MAX_DELAY + 1)
+    inner = usable & (t > t[0] + MAX_DELAY * step) & (t < t[-1] - MAX_DELAY * step)
+    for shift in shifts:  # every shift is judged on the same samples, usable under each
+        inner &= np.interp(t - shift, t, usable.astype(float)) == 1.0
+    target = ctx.y[inner]
+
+    def residual(shift):  # the smooth motion moved, not the switching force (bursty gaps)
+        v = np.interp(t[inner] - shift, t, ctx.motion.v)
+        design = np.column_stack([regularised_sign(v, ctx.velocity_tolerance),
+                                  np.ones(v.size)])
+        moved = target - np.interp(t[inner] - shift, t, ctx.fixed)
+        coef, *_ = np.linalg.lstsq(design, moved, rcond=None)
+        return moved - design @ coef
+
     sums = [float(np.sum(residual(shift) ** 2)) for shift in shifts]
     best = int(np.argmin(sums))
     uneven = np.ptp(np.diff(t)) > 1e-6 * step
