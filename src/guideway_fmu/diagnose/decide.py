@@ -170,42 +170,42 @@ def motion_of(run: MeasuredRun, delay: float = 0.0):
 def channel_delay(ctx: Context, usable) -> float:
     """The delay [s] of the compared channel behind the motion: the shift, in whole nominal
     sampling intervals (signals.sampling_step) up to MAX_DELAY, that lets the baseline (Coulomb
-    level, m a, offset) driven by the motion that much earlier fit it best (on an uneven record refined between the neighbouring steps:
-    its nominal period is not the mean step; on an even one a fractional shift would blur the
-    Coulomb switch the search aligns), where that cuts the baseline's residual sum of squares in
-    excess of the noise's below DELAY_GAIN of the unshifted one's (a force that switches a few
-    samples after each reversal leaves spikes no friction law describes); else 0. A friction
-    build-up after the reversal (pre-sliding) gains less from a shift, for it follows the
-    displacement, not the time. The noise's share (the white floor of the best shift's
-    residual) is taken off both sums: on a record whose derived acceleration is noisy (velocity
-    only) it would otherwise hide the gain."""
+    level, m a, offset) driven by the motion that much earlier fit it best, on the samples
+    whose moved motion has a clear direction (on an uneven record refined between the
+    neighbouring steps: its nominal period is not the mean step; on an even one a fractional
+    shift would blur the Coulomb switch the search aligns), where that cuts the baseline's
+    residual mean square in excess of the noise's below DELAY_GAIN of the unshifted one's (a
+    force that switches a few samples after each reversal leaves spikes no friction law
+    describes); else 0. A friction build-up after the reversal (pre-sliding) gains less from a
+    shift, for it follows the displacement, not the time. The noise's share (the white floor
+    of the best shift's residual) is taken off both: on a record whose derived acceleration is
+    noisy (velocity only) it would otherwise hide the gain. The motion is moved, not the force:
+    interpolated across a bursty record's dropouts, the switching force makes spikes."""
     t = ctx.motion.time
     step = sampling_step(t)
     shifts = step * np.arange(-MAX_DELAY, MAX_DELAY + 1)
-    inner = usable & (t > t[0] + MAX_DELAY * step) & (t < t[-1] - MAX_DELAY * step)
-    for shift in shifts:  # every shift is judged on the same samples, usable under each
-        inner &= np.interp(t - shift, t, usable.astype(float)) == 1.0
-    target = ctx.y[inner]
+    inner = (t > t[0] + MAX_DELAY * step) & (t < t[-1] - MAX_DELAY * step)
 
-    def residual(shift):  # the smooth motion moved, not the switching force (bursty gaps)
-        v = np.interp(t[inner] - shift, t, ctx.motion.v)
+    def residual(shift):  # the smooth motion moved, not the switching force (bursty gaps), on
+        moved = inner & (np.interp(t - shift, t, usable.astype(float)) == 1.0)  # the samples
+        v = np.interp(t[moved] - shift, t, ctx.motion.v)  # whose moved motion is usable
         design = np.column_stack([regularised_sign(v, ctx.velocity_tolerance),
                                   np.ones(v.size)])
-        moved = target - np.interp(t[inner] - shift, t, ctx.fixed)
-        coef, *_ = np.linalg.lstsq(design, moved, rcond=None)
-        return moved - design @ coef
+        target = ctx.y[moved] - np.interp(t[moved] - shift, t, ctx.fixed)
+        coef, *_ = np.linalg.lstsq(design, target, rcond=None)
+        return target - design @ coef
 
-    sums = [float(np.sum(residual(shift) ** 2)) for shift in shifts]
+    sums = [float(np.mean(residual(shift) ** 2)) for shift in shifts]  # mean squares
     best = int(np.argmin(sums))
     uneven = np.ptp(np.diff(t)) > 1e-6 * step
     if uneven and 0 < best < 2 * MAX_DELAY:  # an uneven record's nominal period is not its
-        found = minimize_scalar(lambda shift: float(np.sum(residual(shift) ** 2)),  # mean step:
+        found = minimize_scalar(lambda shift: float(np.mean(residual(shift) ** 2)),  # mean step:
                                 bounds=(shifts[best - 1], shifts[best + 1]),  # refined between
                                 method="bounded", options={"xatol": 0.01 * step})  # neighbours
         shift, least = float(found.x), float(found.fun)
     else:
         shift, least = float(shifts[best]), sums[best]
-    noise = inner.sum() * noise_rms(residual(shift)) ** 2
+    noise = noise_rms(residual(shift)) ** 2
     gain = max(least - noise, 0.0) / max(sums[MAX_DELAY] - noise, 1e-300)
     return shift if gain < DELAY_GAIN else 0.0
 
