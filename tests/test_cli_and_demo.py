@@ -126,3 +126,17 @@ def test_run_with_an_fmu_that_cannot_be_instantiated_is_a_clear_error(fmu_dir, t
     assert cli.main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 2
     err = capsys.readouterr().err
     assert "cannot instantiate Carriage" in err and "Traceback" not in err
+
+
+def test_exit_without_finalising_keeps_buffered_output_and_the_code():
+    # the exit FMU-loading programs take (issue 21's finalisation crash): what was printed
+    # without a newline still arrives, the code is the one given, and no atexit handler runs
+    program = ("import atexit, sys\n"
+               "from guideway_fmu.process import exit_without_finalising\n"
+               "atexit.register(lambda: print('finalised'))\n"
+               "print('out', end='')\n"
+               "sys.stderr.write('err')\n"
+               "exit_without_finalising(3)\n")
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                          timeout=60)
+    assert (done.returncode, done.stdout, done.stderr) == (3, "out", "err")

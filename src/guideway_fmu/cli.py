@@ -10,6 +10,7 @@ from fractions import Fraction
 from pathlib import Path
 
 from .cosim.algorithms import ALGORITHMS
+from .process import exit_without_finalising
 
 
 def _scenario_args(p) -> None:
@@ -263,5 +264,11 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
+def entry() -> None:
+    """The ``guideway-fmu`` command: :func:`main`, then the process ends without the
+    interpreter's finalisation (process.exit_without_finalising)."""
+    exit_without_finalising(main())
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    entry()

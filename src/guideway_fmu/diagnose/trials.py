@@ -11,7 +11,6 @@ FMUs loaded into the process, so tests and benchmarks run a batch in a child pro
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 import time as clock
@@ -20,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..process import exit_without_finalising
 from . import truth
 from .workflow import diagnose
 
@@ -56,6 +56,4 @@ def main(argv=None) -> None:
 
 if __name__ == "__main__":
     main()
-    # the child has loaded FMUs: it skips the interpreter's finalisation, where pythonfmu 0.7
-    # with SciPy's LAPACK loaded sometimes aborts the process after all output is written
-    os._exit(0)
+    exit_without_finalising(0)  # the child has loaded FMUs (guideway_fmu.process)
