@@ -128,9 +128,14 @@ class Candidate:
 
     def columns(self, ctx: Context, setting: dict) -> np.ndarray:
         """Columns (n, k) of the drive-force contribution of the law's linear parameters."""
+        return self.coulomb_column(ctx, ctx.motion.v)[:, None]
+
+    def coulomb_column(self, ctx: Context, v) -> np.ndarray:
+        """The drive-force contribution [N] of the law at unit Coulomb level for the feed
+        velocity ``v`` [m/s] (the motion's, or the motion moved in time by the delay search)."""
         unit = CoulombParams(coefficient=1.0, rollers_per_groove=1,
                              velocity_tolerance=ctx.velocity_tolerance)  # level 2 (0.25 + 0.25) = 1
-        return -self.law(0.25, 0.25, ctx.motion.v, unit)[:, None]
+        return -self.law(0.25, 0.25, np.asarray(v, dtype=float), unit)
 
     def physical(self, ctx: Context, setting: dict, coef: np.ndarray) -> tuple[dict, dict] | None:
         """(parameters, friction FMU parameters) of the fitted coefficients, None if unphysical."""

@@ -40,7 +40,6 @@ from scipy.optimize import minimize_scalar
 from . import locate, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          candidates_for)
-from ..physics.roller_friction import regularised_sign
 from .run_io import MeasuredRun, load_run
 from .signals import derive_motion, noise_rms, sampling_step
 
@@ -189,8 +188,7 @@ def channel_delay(ctx: Context, usable) -> float:
     def residual(shift):  # the smooth motion moved, not the switching force (bursty gaps), on
         moved = inner & (np.interp(t - shift, t, usable.astype(float)) == 1.0)  # the samples
         v = np.interp(t[moved] - shift, t, ctx.motion.v)  # whose moved motion is usable
-        design = np.column_stack([regularised_sign(v, ctx.velocity_tolerance),
-                                  np.ones(v.size)])
+        design = np.column_stack([BASELINE.coulomb_column(ctx, v), np.ones(v.size)])
         target = ctx.y[moved] - np.interp(t[moved] - shift, t, ctx.fixed)
         coef, *_ = np.linalg.lstsq(design, target, rcond=None)
         return target - design @ coef

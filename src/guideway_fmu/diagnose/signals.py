@@ -79,10 +79,12 @@ def rounding_noise(y) -> float:
     return q / np.sqrt(12.0) if on_lattice else 0.0
 
 
-def channel_noise(y) -> float:
-    """RMS noise of a measured channel: :func:`noise_rms`, but at least its
-    :func:`rounding_noise`, where most second differences are 0 and their MAD says nothing."""
-    return max(noise_rms(y), rounding_noise(y))
+def channel_noise(y, orders=(2,)) -> float:
+    """RMS noise of a measured channel: :func:`noise_rms`, the least over the difference
+    ``orders`` given (a smooth signal only adds to each; a load with 8 samples per period adds
+    many times its noise to the second differences, little to the sixth), but at least its
+    :func:`rounding_noise`, where most differences are 0 and their MAD says nothing."""
+    return max(min(noise_rms(y, order) for order in orders), rounding_noise(y))
 
 
 def smooth_channel(time, y) -> tuple[np.ndarray, "Derivation"]:
@@ -339,11 +341,12 @@ def _acceleration_from(grid: _Grid, channel, derivative, sigma, tolerance, per_s
     consistent = np.ones(grid.at.size, dtype=bool)
     for w in windows:
         estimate = grid.filter(channel, deriv=derivative, window=int(w), order=ORDER)
-        low = np.maximum(low, estimate - CONFIDENCE * noise(w))
-        high = np.minimum(high, estimate + CONFIDENCE * noise(w))
+        sigma_w = noise(w)
+        low = np.maximum(low, estimate - CONFIDENCE * sigma_w)
+        high = np.minimum(high, estimate + CONFIDENCE * sigma_w)
         consistent &= low <= high
         a[consistent] = estimate[consistent]
-        spread[consistent] = noise(w)
+        spread[consistent] = sigma_w
     # within half a window of the ends the filter extrapolates its polynomial, which at ORDER
     # amplifies the noise many times: the cubic fit over the same window takes over there (still
     # an extrapolation: the ends are marked)

@@ -67,7 +67,7 @@ from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, SIGNIFICANT_ERRORS, UNR
     _bic, _confidence
 from .realise import write_replay
 from .run_io import MeasuredRun
-from .signals import NOISY, derive_motion, noise_rms, rounding_noise
+from .signals import NOISY, channel_noise, derive_motion
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
 FMUS = ("FeedKinematics", "ForceTable", "VerticalDynamics", *CONTACT_FMUS.values())
@@ -288,14 +288,13 @@ class VerticalRig:
     def input_noise(self, setting: Setting) -> float:
         """RMS [channel units] of what the normal force channel's noise puts into the response
         of ``setting``: the model driven twice with the channel plus independent white noise of
-        the channel's RMS (the least estimate from differences of order 2, 4 and 6: a smooth
-        load only adds to each), the RMS of the difference over sqrt 2. The model is undamped
+        the channel's RMS (signals.channel_noise over differences of order 2, 4 and 6), the RMS
+        of the difference over sqrt 2. The model is undamped
         near its natural frequency, where the noise's share piles up over the record's periods.
         0 where the channel is not recorded or is exact (noise under NOISY of its range)."""
         if "normal_force" not in self.run.columns:
             return 0.0
-        sigma = max(min(noise_rms(self.normal, order) for order in (2, 4, 6)),
-                    rounding_noise(self.normal))
+        sigma = channel_noise(self.normal, orders=(2, 4, 6))
         if sigma <= NOISY * float(np.ptp(self.normal)):
             return 0.0
         rng = np.random.default_rng(INPUT_NOISE_SEED)
