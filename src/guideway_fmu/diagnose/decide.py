@@ -361,7 +361,8 @@ def _name(ctx: Context) -> Naming:
         return (gap_cv**2 - gap_model**2) / max(gap_cv**2 - noise_cv**2, 1e-300)
 
     def law(foreign):  # (fold-1 law, its cross-validated score and share of the gap)
-        laws = [regression.propose(ctx, y - b.prediction, f, where["frequencies"], foreign=foreign)
+        frequencies = where["foreign_frequencies" if foreign else "frequencies"]
+        laws = [regression.propose(ctx, y - b.prediction, f, frequencies, foreign=foreign)
                 for b, (f, _) in zip(bases, splits)]
         prediction = out_of_fold([b.prediction + values for b, (_, values, _) in zip(bases, laws)])
         terms = max(n for _, _, n in laws)

@@ -14,6 +14,8 @@ MAX_BLOCKS = 600
 BINS = 20  # quantile bins of the residual-against-signal statistics
 PAIRS = 3000  # samples whose state-matched partner the incoherent noise estimate looks for
 REFINE = 41  # trial frequencies over two bins of the spectrum refining a peak
+MOTION_PEAKS = 8  # peaks of the motion's spectra a foreign frequency must keep clear of ...
+MOTION_BINS = 3  # ... by more than this many bins (the least separation of two residual peaks)
 NEIGHBOURS = 32  # nearest states searched for a partner from another pass
 
 
@@ -150,6 +152,16 @@ def signals(ctx) -> dict[str, np.ndarray]:
 
 
 def locate(ctx, residual, mask) -> dict:
-    """Share of the residual explained by each signal, and the residual's spectral peaks."""
+    """Share of the residual explained by each signal, the residual's spectral peaks
+    ("frequencies" [Hz]) and those of them a force of foreign origin can be told by
+    ("foreign_frequencies": farther than MOTION_BINS bins of the spectrum from every peak of
+    the velocity's and the acceleration's spectra, where effects of the motion put their own
+    power; on a sinusoidal stroke a missing mass is a sinusoid at the stroke's frequency)."""
     shares = {name: explained(residual, s, mask) for name, s in signals(ctx).items()}
-    return {"explained": shares, "frequencies": peak_frequencies(ctx.motion.time, residual, mask)}
+    time, m = ctx.motion.time, ctx.motion
+    found = peak_frequencies(time, residual, mask)
+    motion = [f for signal in (m.v, m.a)
+              for f in peak_frequencies(time, signal, mask, count=MOTION_PEAKS)]
+    width = MOTION_BINS * spectrum(time, residual, mask)[0][1]
+    return {"explained": shares, "frequencies": found,
+            "foreign_frequencies": [f for f in found if all(abs(f - g) > width for g in motion)]}
