@@ -14,8 +14,9 @@ MAX_BLOCKS = 600
 BINS = 20  # quantile bins of the residual-against-signal statistics
 PAIRS = 3000  # samples whose state-matched partner the incoherent noise estimate looks for
 REFINE = 41  # trial frequencies over two bins of the spectrum refining a peak
-MOTION_PEAKS = 8  # peaks of the motion's spectra a foreign frequency must keep clear of ...
-MOTION_BINS = 3  # ... by more than this many bins (the least separation of two residual peaks)
+#: a residual peak is evidence of a foreign force where the motion's signals hold less than this
+#: share of a sinusoid at its frequency (on a sinusoidal stroke, all of it at the stroke's)
+MOTION_SHARE = 0.5
 NEIGHBOURS = 32  # nearest states searched for a partner from another pass
 
 
@@ -154,14 +155,19 @@ def signals(ctx) -> dict[str, np.ndarray]:
 def locate(ctx, residual, mask) -> dict:
     """Share of the residual explained by each signal, the residual's spectral peaks
     ("frequencies" [Hz]) and those of them a force of foreign origin can be told by
-    ("foreign_frequencies": farther than MOTION_BINS bins of the spectrum from every peak of
-    the velocity's and the acceleration's spectra, where effects of the motion put their own
-    power; on a sinusoidal stroke a missing mass is a sinusoid at the stroke's frequency)."""
+    ("foreign_frequencies": where the motion's own signals, position, velocity, acceleration
+    and direction, hold less than MOTION_SHARE of a sinusoid's power over ``mask``; on a
+    sinusoidal stroke a missing mass is a sinusoid at the stroke's frequency)."""
     shares = {name: explained(residual, s, mask) for name, s in signals(ctx).items()}
-    time, m = ctx.motion.time, ctx.motion
-    found = peak_frequencies(time, residual, mask)
-    motion = [f for signal in (m.v, m.a)
-              for f in peak_frequencies(time, signal, mask, count=MOTION_PEAKS)]
-    width = MOTION_BINS * spectrum(time, residual, mask)[0][1]
+    m = ctx.motion
+    found = peak_frequencies(m.time, residual, mask)
+    motion = np.column_stack([m.x, m.v, m.a, np.sign(m.v), np.ones(m.time.size)])[mask]
+    t = m.time[mask]
+
+    def held_by_motion(f):  # share of the sinusoid's power the motion's signals reproduce
+        wave = np.column_stack([np.sin(2 * np.pi * f * t), np.cos(2 * np.pi * f * t)])
+        fitted = motion @ np.linalg.lstsq(motion, wave, rcond=None)[0]
+        return float(np.sum(fitted**2) / np.sum(wave**2))
+
     return {"explained": shares, "frequencies": found,
-            "foreign_frequencies": [f for f in found if all(abs(f - g) > width for g in motion)]}
+            "foreign_frequencies": [f for f in found if held_by_motion(f) < MOTION_SHARE]}
