@@ -378,6 +378,25 @@ def test_periodic_force_at_a_frequency_between_bins_is_unknown_with_its_sinusoid
     assert "3.21" in named.equation
 
 
+def test_force_on_a_coarse_adc_lattice_has_its_rounding_noise_as_floor_hand_value(tmp_path):
+    # a friction record (second generator, development seed 80000) rounded to a quarter of the
+    # Coulomb level, far coarser than its noise: the residual's second differences are 0 almost
+    # everywhere, their MAD 0, and the decision divided by that zero floor (ZeroDivisionError).
+    # The floor is now at least the lattice's rounding noise q / sqrt(12) (hand value)
+    info = second_truth.draw(tmp_path / "run", "none", "friction_along", 80000, n_samples=4000)
+    path = tmp_path / "run" / "data.csv"
+    header = path.read_text().splitlines()[0].split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1)
+    q = 0.25 * info.parameters["coulomb_level"]
+    column = header.index("friction_force")
+    data[:, column] = q * np.round(data[:, column] / q)
+    np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.12g")
+    named = decide.decide(tmp_path / "run")
+    span = np.ptp(named.ctx.y[named.held])
+    assert named.white_noise * span == pytest.approx(q / np.sqrt(12.0), rel=1e-6)
+    assert named.effect == "none"
+
+
 def test_missing_mass_on_a_sinusoidal_stroke_is_not_a_foreign_sinusoid(tmp_path):
     # a sinusoidal stroke (0.8 Hz, 20 mm) on a drive-force rig whose stated mass misses 6 kg,
     # with a slow sensor drift and AR(1) noise (pole 0.995, 0.2 N RMS): m a is then a sinusoid

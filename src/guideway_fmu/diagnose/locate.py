@@ -6,7 +6,7 @@ import numpy as np
 from scipy.signal import lombscargle
 from scipy.spatial import cKDTree
 
-from .signals import noise_rms, sampling_step
+from .signals import noise_rms, rounding_noise, sampling_step
 
 BLOCK = 25  # samples per block (at least); every third block is held out
 FOLDS = 3  # cross-validation folds: blocks k, k + 3, ... held out in fold k
@@ -14,6 +14,7 @@ MAX_BLOCKS = 600
 BINS = 20  # quantile bins of the residual-against-signal statistics
 PAIRS = 3000  # samples whose state-matched partner the incoherent noise estimate looks for
 REFINE = 41  # trial frequencies over two bins of the spectrum refining a peak
+RESOLUTION = 1e-12  # least noise floor, of the channel's range
 #: a residual peak is evidence of a foreign force where the motion's signals hold less than this
 #: share of a sinusoid at its frequency (on a sinusoidal stroke, all of it at the stroke's)
 MOTION_SHARE = 0.5
@@ -50,8 +51,13 @@ def gap(measured, simulated, mask) -> float:
 
 def noise_floor(measured, residual, mask) -> float:
     """RMS of the measurement noise over the range of ``measured`` on ``mask``, the noise being
-    estimated from the high-frequency part of the residual (second differences, robust MAD)."""
-    return noise_rms(residual) / float(np.ptp(np.asarray(measured)[mask]))
+    estimated from the high-frequency part of the residual (second differences, robust MAD),
+    at least the rounding noise of a channel on a lattice (an ADC step coarser than the noise
+    leaves most differences 0 and their MAD 0) and RESOLUTION of the range (a record free of
+    noise has the arithmetic's)."""
+    span = float(np.ptp(np.asarray(measured)[mask]))
+    noise = max(noise_rms(residual), rounding_noise(measured), RESOLUTION * span)
+    return noise / span
 
 
 def incoherent_noise(motion, residual, mask) -> float:
