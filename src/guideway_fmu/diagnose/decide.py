@@ -227,7 +227,8 @@ def channel_delay(ctx: Context, usable) -> tuple[float, bool]:
         shift, least = float(shifts[best]), sums[best]
     noise = noise_rms(residual(shift)) ** 2
     gain = max(least - noise, 0.0) / max(sums[reach] - noise, 1e-300)
-    return shift, bool(gain < DELAY_GAIN or least < (1.0 - DELAY_SHARE) * sums[reach])
+    return shift, shift != 0.0 and bool(gain < DELAY_GAIN
+                                        or least < (1.0 - DELAY_SHARE) * sums[reach])
 
 
 def _passive_friction(ctx: Context, usable):
