@@ -272,6 +272,16 @@ def test_damped_presliding_leading_the_motion_is_not_a_delay(tmp_path):
     assert named.run.channel_delay == 0.0 and named.effect == "presliding_hysteresis"
 
 
+def test_record_whose_feed_never_moves_is_refused_naming_the_file(tmp_path):
+    # every sample at standstill: the delay search ran before the check of usable samples and
+    # ended in an IndexError; the refusal names data.csv and what is missing
+    run = truth.simulate("none", np.random.default_rng(5), noise=0.01, n_samples=1000)
+    still = {**run.columns, **{name: np.zeros(1000) for name in
+                               ("feed_position", "feed_velocity", "feed_acceleration")}}
+    with pytest.raises(ValueError, match=r"data\.csv: only 0 samples with a clear direction"):
+        decide.decide(truth.write_run(tmp_path / "run", replace(run, columns=still)))
+
+
 def test_no_delay_is_taken_from_a_record_without_one(tmp_path):
     run = truth.simulate("presliding_hysteresis", np.random.default_rng(11), noise=0.01,
                          n_samples=4000)

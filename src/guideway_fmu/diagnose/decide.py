@@ -243,7 +243,7 @@ def _passive_friction(ctx: Context, usable):
     knots = np.r_[0.0, np.geomspace(max(np.quantile(speed, 0.01), 1e-12 * speed.max()),
                                     speed.max(), ODD_KNOTS)]
     hysteresis = PreslidingHysteresis()
-    dahl = np.column_stack([-hysteresis.law(hysteresis.state(ctx, float(d)), 1.0)
+    dahl = np.column_stack([hysteresis.columns(ctx, dict.fromkeys(hysteresis.keys, float(d)))
                             for d in hysteresis.distances(ctx)])
 
     def columns(when):
@@ -272,7 +272,7 @@ def decide(run_dir) -> Naming:
     motion = motion_of(run)
     run.orient_friction(motion.v)
     ctx = Context.of(run, motion)
-    shift, taken = channel_delay(ctx, ~motion.standstill & ~motion.ends)
+    shift, taken = channel_delay(ctx, _splits(run, motion)[0])
     still = None if taken else _name(ctx)
     if not shift or (still is not None and shift < 0.0):  # a force leading the motion by less
         return still  # than the rules ask is what damped pre-sliding (LuGre's sigma_1) shows
@@ -292,9 +292,9 @@ def decide(run_dir) -> Naming:
     return moved
 
 
-def _name(ctx: Context) -> Naming:
-    """Steps 2-4 of :func:`decide` on the motion of ``ctx``."""
-    run, motion = ctx.run, ctx.motion
+def _splits(run: MeasuredRun, motion) -> tuple[np.ndarray, list]:
+    """(usable samples, locate.folds) of ``motion``; ValueError naming data.csv where the feed
+    moves one way only or too few samples have a clear direction."""
     usable = ~motion.standstill & ~motion.ends
     forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
     if min(forward, backward) < ONE_WAY * usable.sum():
@@ -303,10 +303,17 @@ def _name(ctx: Context) -> Naming:
                          f"cannot be told apart; record strokes in both directions (each at least "
                          f"{ONE_WAY:.0%} of the moving samples)")
     splits = locate.folds(run.time.size, usable)
-    fit_mask, held = splits[0]
-    if held.sum() < 20 or fit_mask.sum() < 20:
+    if min(splits[0][1].sum(), splits[0][0].sum()) < 20:
         raise ValueError(f"{run.path / 'data.csv'}: only {int(usable.sum())} samples with a clear "
                          f"direction of motion; at least 60 are needed")
+    return usable, splits
+
+
+def _name(ctx: Context) -> Naming:
+    """Steps 2-4 of :func:`decide` on the motion of ``ctx``."""
+    run, motion = ctx.run, ctx.motion
+    usable, splits = _splits(run, motion)
+    fit_mask, held = splits[0]
 
     y = ctx.y
 

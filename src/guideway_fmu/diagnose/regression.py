@@ -17,10 +17,9 @@ def library(ctx, frequencies, foreign: bool = False) -> dict[str, np.ndarray]:
     """Candidate terms by expression over the channel names (derived signals where unmeasured).
 
     ``foreign``: only the terms no candidate effect contains (the normal force, sinusoids at
-    ``frequencies`` [Hz]: the residual's peaks clear of the motion's, locate.locate) and the
-    baseline's own (constant, Coulomb). The
-    normal force is the recorded channel smoothed (Context.load), so that its noise neither
-    biases nor blurs the law.
+    ``frequencies`` [Hz]: the residual's peaks the motion does not hold, locate.locate) and the
+    baseline's own (constant, Coulomb). The normal force is the recorded channel smoothed
+    (Context.load), so that its noise neither biases nor blurs the law.
     """
     m = ctx.motion
     values = {"feed_velocity": m.v, "feed_position": m.x, "feed_acceleration": m.a,
