@@ -2,6 +2,7 @@
 import os
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 
@@ -21,3 +22,31 @@ def fmu_dir(tmp_path_factory):
     out = tmp_path_factory.mktemp("fmus")
     build(out)
     return out
+
+
+@pytest.fixture(scope="session")
+def cosine_blend_strokes():
+    """Strokes reversing through half-cosine blends (v = speed cos(pi tau / blend)), whose
+    acceleration is continuous with a corner at each end of a blend: 4000 samples of 4.4 ms,
+    0.1 m/s, blends of 0.16 s (36 samples), cruises of 0.6 s. (time [s], position [m],
+    velocity [m/s], acceleration [m/s^2], corner instants [s])."""
+    n, step, speed, blend, cruise = 4000, 0.0044, 0.1, 0.16, 0.6
+    period = 2 * (blend + cruise)
+    t = np.arange(n) * step
+    fine = np.arange(0.0, t[-1] + 1e-4, 1e-5)
+    phase = np.mod(fine, period)
+
+    def profile(p):
+        tau = np.mod(p, period / 2)
+        sign = np.where(p < period / 2, 1.0, -1.0)
+        inside = tau < blend
+        v = sign * np.where(inside, speed * np.cos(np.pi * tau / blend), -speed)
+        a = sign * np.where(inside, -speed * np.pi / blend * np.sin(np.pi * tau / blend), 0.0)
+        return v, a
+
+    v_fine, _ = profile(phase)
+    x_fine = np.concatenate([[0.0], np.cumsum(0.5 * (v_fine[1:] + v_fine[:-1]) * np.diff(fine))])
+    v, a = profile(np.mod(t, period))
+    corners = np.sort(np.concatenate([np.arange(0.0, t[-1], period / 2),
+                                      np.arange(blend, t[-1], period / 2)]))
+    return t, np.interp(t, fine, x_fine), v, a, corners

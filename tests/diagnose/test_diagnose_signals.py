@@ -298,3 +298,20 @@ def test_acceleration_on_short_ramps_takes_shorter_windows_there_against_true_mo
     near = np.convolve(np.abs(a_true) > 0, np.ones(2 * how.window + 1), mode="same") > 0
     cruise = inner & ~near
     assert np.sqrt(np.mean(motion.a[cruise] ** 2)) < 1.2 * 2e-6 * np.linalg.norm(fixed)
+
+
+def test_unresolved_acceleration_is_marked_around_the_corners_of_cosine_blends_only_by_hand(
+        cosine_blend_strokes):
+    # strokes reversing through half-cosine blends (corners of the acceleration at both ends of
+    # each blend, instants known by construction), encoder of 0.2 um: the lack-of-fit test
+    # marks samples within the filter's half window of a corner, and none a window away
+    t, x, _, _, corners = cosine_blend_strokes
+    motion = derive_motion(t, {"feed_position": np.round(x / 2e-7) * 2e-7}, 1e-3)
+    window = motion.how["feed_acceleration"].window
+    distance = np.min(np.abs(t[:, None] - corners[None, :]), axis=1) / (t[1] - t[0])
+    inner = ~motion.ends
+    assert np.all(distance[inner & motion.unresolved] <= window // 2 + 1)
+    assert not np.any(motion.unresolved[inner & (distance > window)])
+    # every corner inside the record is seen
+    assert all(motion.unresolved[np.argmin(np.abs(t - c))] for c in corners
+               if window < c / (t[1] - t[0]) < t.size - window)

@@ -65,6 +65,9 @@ INPUT_SHARE = 0.3
 #: happened; records with a return stroke that were looked at: 0.85-0.92)
 SAME_PATH = 0.99
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
+#: samples with a resolved acceleration the input check needs (signals.Motion.unresolved);
+#: fewer, and a gap at the acceleration's corners is judged as any other
+MIN_RESOLVED = 60
 MAX_DELAY = 5  # samples: the longest delay of the compared channel behind the motion sought
 #: a delay is taken where it cuts the free model's residual mean square in excess of the noise
 #: below DELAY_GAIN of the unshifted one's (the delay is all there is: a few samples cut it to
@@ -292,6 +295,10 @@ def decide(run_dir) -> Naming:
     return moved
 
 
+def _rms(values, mask) -> float:
+    return float(np.sqrt(np.mean(values[mask] ** 2)))
+
+
 def _splits(run: MeasuredRun, motion) -> tuple[np.ndarray, list]:
     """(usable samples, locate.folds) of ``motion``; ValueError naming data.csv where the feed
     moves one way only or too few samples have a clear direction."""
@@ -368,17 +375,25 @@ def _name(ctx: Context) -> Naming:
     def share(gap_model):  # of the gap's excess variance over the noise, cross-validated
         return (gap_cv**2 - gap_model**2) / max(gap_cv**2 - noise_cv**2, 1e-300)
 
-    def law(foreign):  # (fold-1 law, its cross-validated score and share of the gap)
+    def law(foreign):  # (fold-1 law, its cross-validated score, its out-of-fold prediction)
         frequencies = where["foreign_frequencies" if foreign else "frequencies"]
         laws = [regression.propose(ctx, y - b.prediction, f, frequencies, foreign=foreign)
                 for b, (f, _) in zip(bases, splits)]
         prediction = out_of_fold([b.prediction + values for b, (_, values, _) in zip(bases, laws)])
         terms = max(n for _, _, n in laws)
         score = bic_base - _bic(y - prediction, usable, baseline.n_parameters + terms)
-        return laws[0], score, share(locate.gap(y, prediction, usable))
+        return laws[0], score, prediction
+
+    def unexplained(mask, laws, whole):  # a gap on mask a law explains, or too large for noise
+        gap = _rms(y - base_cv, mask) / span
+        excess = max(gap**2 - noise_cv**2, 1e-300)
+        return (any(score > SCORE_MIN
+                    and (gap**2 - (_rms(y - prediction, mask) / span)**2) / excess >= LAW_EXPLAINED
+                    for score, prediction in laws)
+                or gap > UNRESOLVED * max(noise_cv, whole))
 
     # a law from signals no candidate uses (normal force, residual peak frequencies) competes
-    _, foreign_score, foreign_share = law(foreign=True)
+    _, foreign_score, foreign_prediction = law(foreign=True)
     effect, winner, equation, values = "none", None, None, None
     chosen, twins = _same_path_choice(ctx, usable, ranked)
     chosen = _nested_choice(ranked, chosen)
@@ -388,11 +403,18 @@ def _name(ctx: Context) -> Naming:
                 and score > foreign_score):
             effect, winner = best.effect, best
         else:
-            (equation, values, _), law_score, law_share = law(foreign=False)
-            explains = law_score > SCORE_MIN and law_share >= LAW_EXPLAINED
-            foreign_explains = foreign_score > SCORE_MIN and foreign_share >= LAW_EXPLAINED
+            (equation, values, _), law_score, law_prediction = law(foreign=False)
+            laws = [(law_score, law_prediction), (foreign_score, foreign_prediction)]
             whole = locate.incoherent_noise(ctx.motion, y - base_cv, usable) / span
-            if explains or foreign_explains or gap_cv > UNRESOLVED * max(noise_cv, whole):
+            # the same on the samples whose acceleration is resolved: a gap that lives only
+            # where it is not is the derived input's error times the mass, not an effect
+            resolved = usable & ~motion.unresolved
+            n_resolved = int(resolved.sum())
+            beyond_inputs = n_resolved < MIN_RESOLVED or (
+                _rms(y - base_cv, resolved) / span
+                > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * n_resolved)) * noise_cv
+                and unexplained(resolved, laws, whole))
+            if unexplained(usable, laws, whole) and beyond_inputs:
                 effect = "unknown"
             else:  # small structure no model or law accounts for: the inputs' own errors
                 equation, values = None, None

@@ -36,6 +36,7 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 from scipy.signal import savgol_coeffs, savgol_filter
+from scipy.stats import chi2
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
 STANDSTILL = 0.01  # |v| below this fraction of max |v|: direction of motion ambiguous
@@ -52,6 +53,8 @@ ORDER = 7  # polynomial order of the filter that differentiates the position twi
 #: longest window of that filter: scipy's coefficients of order 7 lose their precision beyond
 #: about 150 samples (their sum is 0.002 instead of 0 at 101 samples, 1800 at 201)
 LONGEST = 101
+#: false-alarm probability of the lack-of-fit test that marks an acceleration as unresolved
+LACK_OF_FIT = 1e-4
 NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
 SMOOTHEST = 513  # longest window [samples] of smooth_channel
 GAP = 1.5  # intervals over this many nominal steps are filled in Motion.path
@@ -68,15 +71,19 @@ def noise_rms(y, order: int = 2) -> float:
 
 def rounding_noise(y) -> float:
     """Rounding noise q / sqrt(12) of a channel whose values lie on a lattice of step q (an
-    encoder count, or a difference of counts), else 0."""
+    encoder count, or a difference of counts), else 0. q is the least step between consecutive
+    samples, or, where those are not its multiples (a fast axis moves several counts per sample),
+    the least gap between the distinct values the channel takes."""
     y = np.asarray(y, dtype=float)
-    steps = np.abs(np.diff(y))
-    steps = steps[steps > 1e-9 * max(float(np.max(np.abs(y))), 1e-300)]
-    if steps.size == 0:
-        return 0.0
-    q = float(np.min(steps))
-    on_lattice = np.mean(np.abs(steps / q - np.round(steps / q)) < 1e-3) > 0.99
-    return q / np.sqrt(12.0) if on_lattice else 0.0
+    tiny = 1e-9 * max(float(np.max(np.abs(y))), 1e-300)
+    for steps in (np.abs(np.diff(y)), np.diff(np.unique(y))):
+        steps = steps[steps > tiny]
+        if steps.size == 0:
+            return 0.0
+        q = float(np.min(steps))
+        if np.mean(np.abs(steps / q - np.round(steps / q)) < 1e-3) > 0.99:
+            return q / np.sqrt(12.0)
+    return 0.0
 
 
 def channel_noise(y, orders=(2,)) -> float:
@@ -180,6 +187,7 @@ class Motion:
     ends: np.ndarray
     standstill_speed: float
     rest_band: float | None
+    unresolved: np.ndarray  # samples whose acceleration the filter cannot resolve
 
     def path(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(time [s], position [m], velocity [m/s], acceleration [m/s^2], indices of the samples
@@ -352,7 +360,29 @@ def _acceleration_from(grid: _Grid, channel, derivative, sigma, tolerance, per_s
     # an extrapolation: the ends are marked)
     ends = grid.ends(window)
     a[ends] = grid.filter(channel, deriv=derivative, window=window)[ends]
-    return a, window, ends, float(np.sqrt(np.mean(spread[~ends] ** 2)))
+    return (a, window, ends, float(np.sqrt(np.mean(spread[~ends] ** 2))),
+            _unresolved(grid, on_grid, window, sigma))
+
+
+def _unresolved(grid: _Grid, on_grid, window, sigma) -> np.ndarray:
+    """Samples [bool] whose ``window`` [samples] of ``on_grid`` (a channel on the grid, of noise
+    RMS ``sigma``) departs from its ORDER polynomial by more than the noise: lack-of-fit test,
+    the residual sum of squares over sigma^2 against chi^2 of window - ORDER - 1 degrees of
+    freedom at LACK_OF_FIT. A motion whose acceleration has a corner (a ramp of cosine blends,
+    a jerk step) is not locally polynomial there, and no window of the filter resolves it: on
+    strokes with 36-sample blends every window from 9 samples up errs at the corners by about a
+    tenth of the peak acceleration, many times a drive's force noise once times its mass."""
+    flagged = np.zeros(on_grid.size, dtype=bool)
+    if sigma <= 0.0 or on_grid.size < window:
+        return np.zeros(grid.at.size, dtype=bool)
+    offsets = np.arange(window) - window // 2
+    basis = np.vander(offsets, ORDER + 1, increasing=True)
+    maker = np.eye(window) - basis @ np.linalg.pinv(basis)  # residuals of the polynomial fit
+    windows = np.lib.stride_tricks.sliding_window_view(on_grid, window)
+    squares = np.sum((windows @ maker) * windows, axis=1) / sigma ** 2
+    half = window // 2
+    flagged[half:on_grid.size - half] = squares > chi2.ppf(1.0 - LACK_OF_FIT, window - ORDER - 1)
+    return np.interp(grid.at, grid.grid, flagged.astype(float)) > 0.0
 
 
 def derive_motion(time, columns: dict, acceleration_noise: float | None,
@@ -405,8 +435,8 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None,
     reversals = moving[1:][signs[1:] != signs[:-1]]
     per_stroke = np.median(np.diff(reversals)) if reversals.size > 2 else time.size
     if "feed_position" in columns and acceleration_noise is not None:
-        a, window, ends, noise = _acceleration_from(grid, columns["feed_position"], 2, rounding,
-                                                    acceleration_noise, per_stroke)
+        a, window, ends, noise, unresolved = _acceleration_from(
+            grid, columns["feed_position"], 2, rounding, acceleration_noise, per_stroke)
         if rounding > 0.0:  # encoder counts: de-quantised
             x = grid.filter(columns["feed_position"], window=window, order=ORDER)
             how["feed_position"] = grid.derivation(window=window, order=ORDER, dequantised=True)
@@ -416,13 +446,13 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None,
     elif ("feed_velocity" in columns and "feed_acceleration" not in columns
           and acceleration_noise is not None):  # the velocity's noise limits the window alike
         raw = columns["feed_velocity"]
-        a, window, ends, noise = _acceleration_from(grid, raw, 1, channel_noise(raw),
-                                                    acceleration_noise, per_stroke)
+        a, window, ends, noise, unresolved = _acceleration_from(
+            grid, raw, 1, channel_noise(raw), acceleration_noise, per_stroke)
         how["feed_acceleration"] = grid.derivation("feed_velocity", 1, window, ORDER,
                                                    noise_limit=acceleration_noise,
                                                    output_noise=noise)
     else:
-        ends = grid.ends(grid.window)
+        ends, unresolved = grid.ends(grid.window), np.zeros(time.size, dtype=bool)
         if "feed_acceleration" in columns:
             a = measured("feed_acceleration")
         elif "feed_velocity" in columns:  # the derivative of the velocity as measured (or
@@ -436,4 +466,5 @@ def derive_motion(time, columns: dict, acceleration_noise: float | None,
         gain = _acceleration_gain(grid, columns, a)
         a = gain * a
         how["feed_acceleration"] = replace(how["feed_acceleration"], gain=gain)
-    return Motion(time, x, v, a, standstill, reversals, how, ends, float(limit), band)
+    return Motion(time, x, v, a, standstill, reversals, how, ends, float(limit), band,
+                  unresolved)
