@@ -17,13 +17,16 @@
    noise; else ``unknown`` with a sparse-regression law for the residual when such a law (or
    the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap
    exceeds UNRESOLVED times the whole noise (locate.incoherent_noise: noise of any colour, where
-   the white floor sees only its high-frequency part); else ``none``: a small gap that neither
-   physics nor a law accounts for is taken as what the data cannot resolve (coloured noise,
-   errors of the measured inputs such as accelerations differenced from encoder counts), which
-   the synthetic null runs show. Significance and the share explained are judged against the
-   white floor, a lower bound of the noise, so that coloured noise never hides a structured
-   gap a candidate explains; it includes, in quadrature, the noise a derived acceleration
-   carries into the model's m a (known from its filter: signals.Derivation.output_noise).
+   the white floor sees only its high-frequency part), and the same holds on the samples whose
+   derived acceleration the filter resolves (signals.Motion.unresolved: a gap at the corners of
+   the acceleration alone is the input's error times the mass); else ``none``: a small gap
+   that neither physics nor a law accounts for is taken as what the data cannot resolve
+   (coloured noise, errors of the measured inputs such as accelerations differenced from
+   encoder counts), which the synthetic null runs show. Significance and the share explained
+   are judged against the white floor, a lower bound of the noise, so that coloured noise
+   never hides a structured gap a candidate explains; it includes, in quadrature, the noise a
+   derived acceleration carries into the model's m a (known from its filter:
+   signals.Derivation.output_noise).
    The reported noise floor is the larger of the white floor and the
    incoherent noise left by the reported model (the named one, the baseline with its law for
    ``unknown``, else the baseline).
