@@ -375,8 +375,8 @@ def _name(ctx: Context) -> Naming:
                                                           fitted[0].n_parameters, score)
     ranked.sort(key=lambda item: -item[0])
 
-    def share(gap_model):  # of the gap's excess variance over the noise, cross-validated
-        return (gap_cv**2 - gap_model**2) / max(gap_cv**2 - noise_cv**2, 1e-300)
+    def share(gap_model, gap=gap_cv):  # of the gap's excess variance over the noise
+        return (gap**2 - gap_model**2) / max(gap**2 - noise_cv**2, 1e-300)
 
     def law(foreign):  # (fold-1 law, its cross-validated score, its out-of-fold prediction)
         frequencies = where["foreign_frequencies" if foreign else "frequencies"]
@@ -389,9 +389,8 @@ def _name(ctx: Context) -> Naming:
 
     def unexplained(mask, laws, whole):  # a gap on mask a law explains, or too large for noise
         gap = _rms(y - base_cv, mask) / span
-        excess = max(gap**2 - noise_cv**2, 1e-300)
         return (any(score > SCORE_MIN
-                    and (gap**2 - (_rms(y - prediction, mask) / span)**2) / excess >= LAW_EXPLAINED
+                    and share(_rms(y - prediction, mask) / span, gap) >= LAW_EXPLAINED
                     for score, prediction in laws)
                 or gap > UNRESOLVED * max(noise_cv, whole))
 

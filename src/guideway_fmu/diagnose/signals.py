@@ -371,9 +371,11 @@ def _unresolved(grid: _Grid, on_grid, window, sigma) -> np.ndarray:
     freedom at LACK_OF_FIT. A motion whose acceleration has a corner (a ramp of cosine blends,
     a jerk step) is not locally polynomial there, and no window of the filter resolves it: on
     strokes with 36-sample blends every window from 9 samples up errs at the corners by about a
-    tenth of the peak acceleration, many times a drive's force noise once times its mass."""
+    tenth of the peak acceleration, many times a drive's force noise once times its mass. On an
+    uneven record the grid holds a spline's values, not measurements of known noise: no sample
+    is marked there."""
     flagged = np.zeros(on_grid.size, dtype=bool)
-    if sigma <= 0.0 or on_grid.size < window:
+    if sigma <= 0.0 or on_grid.size < window or not grid.uniform:
         return np.zeros(grid.at.size, dtype=bool)
     offsets = np.arange(window) - window // 2
     basis = np.vander(offsets, ORDER + 1, increasing=True)
