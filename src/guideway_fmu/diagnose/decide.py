@@ -82,6 +82,8 @@ MAX_DELAY = 5  # samples: the longest delay of the compared channel behind the m
 DELAY_GAIN = 0.15
 DELAY_SHARE = 0.4
 ODD_KNOTS = 10  # knots of the delay search's free friction curve over the speed (besides 0)
+#: knots of its friction level over the running distance
+LEVEL_KNOTS = 6
 
 
 def _bic(residual, mask, k) -> float:
@@ -196,8 +198,9 @@ def channel_delay(ctx: Context, usable) -> tuple[float, bool]:
     describes). A shift not taken is for :func:`decide` to try beside none (0 where the least
     mean square lies at the search's edge: a trend, not a delay).
 
-    The free model (:func:`_passive_friction`) holds any friction curve over the speed and any
-    pre-sliding build-up over the displacement since the reversal, m a and an offset: a
+    The free model (:func:`_passive_friction`) holds any friction curve over the speed, any
+    pre-sliding build-up over the displacement since the reversal, a level varying slowly with
+    the running distance, m a and an offset: a
     Stribeck curve or a hysteresis beside the delay then leaves no residual a shift could
     reduce, while a delay, which acts in time at every reversal whatever its acceleration, is
     not among its shapes. The noise's share (the white floor of the best shift's residual) is
@@ -242,8 +245,10 @@ def _passive_friction(ctx: Context, usable):
     function ``when -> columns`` (the motion interpolated there). Columns: the baseline's
     Coulomb law, hat functions over the speed on ODD_KNOTS geometric knots from the 1 % quantile
     of the speed to its maximum (and zero) times the direction, the Dahl states of the
-    pre-sliding candidate's distance grid (a Maxwell-slip model), all with coefficients >= 0 in
-    the fit (friction opposes the motion), and the offset, free."""
+    pre-sliding candidate's distance grid (a Maxwell-slip model), hat functions over the running
+    distance on LEVEL_KNOTS even knots times the direction (a level that wears or settles: a
+    preload lost over a tribometer's first millimetre read as a 5-sample delay without them),
+    all with coefficients >= 0 in the fit (friction opposes the motion), and the offset, free."""
     t, v = ctx.motion.time, ctx.motion.v
     speed = np.abs(v[usable])
     knots = np.r_[0.0, np.geomspace(max(np.quantile(speed, 0.01), 1e-12 * speed.max()),
@@ -251,12 +256,16 @@ def _passive_friction(ctx: Context, usable):
     hysteresis = PreslidingHysteresis()
     dahl = np.column_stack([hysteresis.columns(ctx, dict.fromkeys(hysteresis.keys, float(d)))
                             for d in hysteresis.distances(ctx)])
+    along = [(ctx.distance, np.linspace(0.0, ctx.distance[-1], LEVEL_KNOTS))]
 
     def columns(when):
         moved = np.interp(when, t, v)
-        hats = [np.interp(np.abs(moved), knots, hat) * np.sign(moved) for hat in np.eye(knots.size)]
+        direction = np.sign(moved)
+        hats = [np.interp(np.abs(moved), knots, hat) * direction for hat in np.eye(knots.size)]
         slip = [np.interp(when, t, column) for column in dahl.T]
-        return np.column_stack([BASELINE.coulomb_column(ctx, moved), *hats, *slip,
+        levels = [np.interp(np.interp(when, t, signal), nodes, hat) * direction
+                  for signal, nodes in along for hat in np.eye(LEVEL_KNOTS)]
+        return np.column_stack([BASELINE.coulomb_column(ctx, moved), *hats, *slip, *levels,
                                 np.ones(moved.size)])
 
     return columns
