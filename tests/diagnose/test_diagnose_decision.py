@@ -160,6 +160,22 @@ def test_a_nested_candidate_is_named_unless_the_richer_one_scores_beyond_score_m
     assert ranked[decide._nested_choice(ranked, 0)][1].effect == chosen
 
 
+def test_a_richer_model_ahead_by_less_than_score_min_independent_samples_gives_way():
+    # 80 ahead in the BIC of residuals correlated over 11 samples is about 7 in independent
+    # samples: the nested candidate is named
+    ranked = _ranked(ball_to_ball_contact=16371.0, preload_loss=16291.0)
+    assert ranked[decide._nested_choice(ranked, 0)][1].effect == "ball_to_ball_contact"
+    assert ranked[decide._nested_choice(ranked, 0, 11 * decide.SCORE_MIN)][1].effect == "preload_loss"
+
+
+@pytest.mark.parametrize("pole", [0.0, 0.5, 0.8])
+def test_correlation_time_of_ar1_noise_is_one_plus_pole_over_one_minus_pole_hand_value(pole):
+    noise = lfilter([1.0], [1.0, -pole], np.random.default_rng(3).standard_normal(40000))
+    mask = np.ones(noise.size, bool)
+    mask[5000:5100] = False  # a gap: lags are taken within runs of the mask
+    assert locate.correlation_time(noise, mask) == pytest.approx((1 + pole) / (1 - pole), rel=0.1)
+
+
 @pytest.mark.parametrize("seed", [21, 23])
 def test_steady_wear_preload_loss_gives_the_distance_at_which_the_preload_is_gone(tmp_path, seed):
     # a null record plus the wear law of physics/friction_effects.py: the preload carries its

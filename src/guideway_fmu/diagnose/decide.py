@@ -34,7 +34,8 @@
    the mark of position dependence: there a running-distance candidate within SCORE_MIN of the
    position table is named instead, the pair's evidence shared (:func:`_same_path_choice`);
    a candidate whose model a richer one contains is named where it scores within SCORE_MIN of
-   it (:func:`_nested_choice`: preload loss before ball-to-ball contact).
+   it, times the correlation time of the richer one's residual (:func:`_nested_choice`:
+   preload loss before ball-to-ball contact).
 """
 from __future__ import annotations
 
@@ -126,17 +127,17 @@ def _same_path_choice(ctx: Context, usable: np.ndarray, ranked: list) -> tuple[i
     return 0, []
 
 
-def _nested_choice(ranked: list, chosen: int) -> int:
+def _nested_choice(ranked: list, chosen: int, margin: float = SCORE_MIN) -> int:
     """Index into ``ranked`` of the candidate to name instead of ``ranked[chosen]``: one whose
     model the chosen one's contains (Candidate.nests: a free table over the running distance
-    holds any monotone drift of the level) scoring within SCORE_MIN of it, the richer model
+    holds any monotone drift of the level) scoring within ``margin`` of it, the richer model
     not being needed by the data; else ``chosen``."""
     if not ranked:
         return chosen
     top, best, _ = ranked[chosen]
     nested = CANDIDATES[best.effect].nests
     for i, (score, fitted, _) in enumerate(ranked):
-        if fitted.effect in nested and top - score < SCORE_MIN:
+        if fitted.effect in nested and top - score < margin:
             return i
     return chosen
 
@@ -407,7 +408,11 @@ def _name(ctx: Context) -> Naming:
     _, foreign_score, foreign_prediction = law(foreign=True)
     effect, winner, equation, values = "none", None, None, None
     chosen, twins = _same_path_choice(ctx, usable, ranked)
-    chosen = _nested_choice(ranked, chosen)
+    # residuals correlated over tau samples count each sample tau times in the BIC: the richer
+    # model must beat the nested one by SCORE_MIN in independent samples (pink noise made a
+    # free table's shape details worth 35-145 against a preload law's, tau 11-14)
+    chosen = _nested_choice(ranked, chosen, SCORE_MIN * (locate.correlation_time(
+        y - ranked[chosen][1].prediction, usable) if ranked else 1.0))
     if significant:
         score, best, _ = ranked[chosen] if ranked else (-np.inf, None, gap_base)
         if (score > SCORE_MIN and share(cv_gaps[best.effect]) >= EXPLAINED

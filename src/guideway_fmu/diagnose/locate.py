@@ -102,6 +102,24 @@ def whiteness(residual, mask, lags: int = 5) -> float:
                           for k in range(1, lags + 1)]))
 
 
+def correlation_time(residual, mask, lags: int = 400) -> float:
+    """Integrated autocorrelation time [samples] of the residual on runs of consecutive samples
+    of ``mask``: 1 + 2 sum of its autocorrelations up to the first lag (at most ``lags``) where
+    they are no longer positive; (1 + phi) / (1 - phi) for AR(1) noise of pole phi, 1 for white.
+    n samples of such a residual hold about n / tau independent ones."""
+    r = np.where(mask, residual - residual[mask].mean(), 0.0)
+    var = float(np.sum(r * r))
+    if var == 0.0:
+        return 1.0
+    tau = 1.0
+    for k in range(1, min(lags, r.size - 1)):
+        rho = float(np.sum(r[k:] * r[:-k] * (mask[k:] & mask[:-k]))) / var
+        if rho <= 0.0:
+            break
+        tau += 2.0 * rho
+    return tau
+
+
 def explained(residual, signal, mask) -> float:
     """Share of the residual's variance explained by its means in quantile bins of ``signal``
     (correlation ratio eta^2, 0..1)."""
