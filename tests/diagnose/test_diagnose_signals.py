@@ -8,7 +8,7 @@ import pytest
 from scipy.signal import savgol_coeffs, savgol_filter
 
 from guideway_fmu.diagnose.signals import (ORDER, Derivation, channel_noise, derive_motion, noise_rms,
-                                            smooth_channel)
+                                            rounding_noise, smooth_channel)
 
 
 def test_channel_noise_of_encoder_counts_is_the_rounding_noise_by_hand():
@@ -18,6 +18,18 @@ def test_channel_noise_of_encoder_counts_is_the_rounding_noise_by_hand():
     counts = np.round(4e-4 * t / 1e-6) * 1e-6  # a tenth of a count per sample
     assert noise_rms(counts) == 0.0
     assert channel_noise(counts) == pytest.approx(1e-6 / np.sqrt(12.0), rel=1e-9)
+
+
+def test_rounding_noise_of_a_fast_encoder_never_moving_one_count_per_sample_by_hand():
+    # a feed at 8-72 counts of 0.2 um per sample: consecutive steps are never one count, but
+    # the positions still lie on the count lattice, q / sqrt(12); a smooth unrounded channel
+    # has none
+    t = np.linspace(0.0, 2.0, 4001)
+    x = 0.002 * np.sin(2 * np.pi * t) + 0.016 * t
+    counts = np.round(x / 2e-7) * 2e-7
+    assert np.min(np.abs(np.diff(counts))) >= 8 * 2e-7 * (1 - 1e-9)
+    assert rounding_noise(counts) == pytest.approx(2e-7 / np.sqrt(12.0), rel=1e-6)
+    assert rounding_noise(x) == 0.0
 
 
 def test_channel_noise_of_a_difference_of_counts_uses_its_own_lattice_by_hand():

@@ -53,6 +53,7 @@ ORDER = 7  # polynomial order of the filter that differentiates the position twi
 #: longest window of that filter: scipy's coefficients of order 7 lose their precision beyond
 #: about 150 samples (their sum is 0.002 instead of 0 at 101 samples, 1800 at 201)
 LONGEST = 101
+COUNTS = 64  # the most lattice steps the least step between samples is searched for
 #: false-alarm probability of the lack-of-fit test that marks an acceleration as unresolved
 LACK_OF_FIT = 1e-4
 NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
@@ -71,16 +72,16 @@ def noise_rms(y, order: int = 2) -> float:
 
 def rounding_noise(y) -> float:
     """Rounding noise q / sqrt(12) of a channel whose values lie on a lattice of step q (an
-    encoder count, or a difference of counts), else 0. q is the least step between consecutive
-    samples, or, where those are not its multiples (a fast axis moves several counts per sample),
-    the least gap between the distinct values the channel takes."""
+    encoder count, or a difference of counts), else 0: the largest q, the least step between
+    consecutive samples over 1 to COUNTS, of which 99 % of the steps are whole multiples (a
+    fast axis may never move a single count between samples)."""
     y = np.asarray(y, dtype=float)
-    tiny = 1e-9 * max(float(np.max(np.abs(y))), 1e-300)
-    for steps in (np.abs(np.diff(y)), np.diff(np.unique(y))):
-        steps = steps[steps > tiny]
-        if steps.size == 0:
-            return 0.0
-        q = float(np.min(steps))
+    steps = np.abs(np.diff(y))
+    steps = steps[steps > 1e-9 * max(float(np.max(np.abs(y))), 1e-300)]
+    if steps.size == 0:
+        return 0.0
+    for counts in range(1, COUNTS + 1):
+        q = float(np.min(steps)) / counts
         if np.mean(np.abs(steps / q - np.round(steps / q)) < 1e-3) > 0.99:
             return q / np.sqrt(12.0)
     return 0.0
