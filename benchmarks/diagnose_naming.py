@@ -15,7 +15,6 @@ from __future__ import annotations
 import argparse
 import tempfile
 import warnings
-import sys
 from collections import Counter
 from multiprocessing import Pool
 from pathlib import Path
@@ -75,7 +74,8 @@ def main(argv=None) -> None:
         print(f"{answer:30s} {named:3d}/{total:<3d}")
     print(f"hidden effects named right: {right}/{len(hidden)} ({100 * right / len(hidden):.1f} %)")
     if args.page != "-":
-        command = " ".join(["python", "benchmarks/diagnose_naming.py", *(argv or sys.argv[1:])])
+        command = (f"python benchmarks/diagnose_naming.py --draws {args.draws} "
+                   f"--samples {args.samples} --seed {args.seed}")
         write_page(Path(args.page), command, args, rows, right, len(hidden), wrong)
 
 
