@@ -317,7 +317,8 @@ def _acceleration_gain(grid: _Grid, columns: dict, a) -> float:
 
 
 def _acceleration_from(grid: _Grid, channel, derivative, sigma, tolerance, per_stroke) -> tuple:
-    """(acceleration [m/s^2], window [samples], ends [bool mask], its noise RMS [m/s^2]): the
+    """(acceleration [m/s^2], window [samples], ends [bool mask], its noise RMS [m/s^2], the
+    samples it does not resolve [bool mask, :func:`_unresolved`]): the
     ``derivative``-th derivative (2 of a position [m], 1 of a velocity [m/s]) of ``channel`` by
     the ORDER filter over the shortest odd window whose output noise, the channel's noise
     ``sigma`` times the norm of the filter's coefficients, is at most ``tolerance`` [m/s^2]
@@ -378,12 +379,12 @@ def _unresolved(grid: _Grid, on_grid, window, sigma) -> np.ndarray:
     flagged = np.zeros(on_grid.size, dtype=bool)
     if sigma <= 0.0 or on_grid.size < window or not grid.uniform:
         return np.zeros(grid.at.size, dtype=bool)
-    offsets = np.arange(window) - window // 2
-    basis = np.vander(offsets, ORDER + 1, increasing=True)
+    half = window // 2
+    basis = np.vander((np.arange(window) - half) / half, ORDER + 1, increasing=True)
     maker = np.eye(window) - basis @ np.linalg.pinv(basis)  # residuals of the polynomial fit
     windows = np.lib.stride_tricks.sliding_window_view(on_grid, window)
-    squares = np.sum((windows @ maker) * windows, axis=1) / sigma ** 2
-    half = window // 2
+    windows = windows - windows[:, half:half + 1]  # the excursion: a position's size would
+    squares = np.sum((windows @ maker) * windows, axis=1) / sigma ** 2  # swamp eps x^2
     flagged[half:on_grid.size - half] = squares > chi2.ppf(1.0 - LACK_OF_FIT, window - ORDER - 1)
     return np.interp(grid.at, grid.grid, flagged.astype(float)) > 0.0
 
