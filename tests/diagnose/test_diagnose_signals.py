@@ -332,7 +332,7 @@ def test_unresolved_acceleration_is_marked_around_the_corners_of_cosine_blends_o
 def test_smooth_motion_half_a_metre_out_on_a_10_nm_encoder_is_resolved_everywhere_limiting_case():
     # the lack-of-fit test's residuals are of the excursion within each window, not of the
     # position: eps x^2 at x = 0.5 m is about 30 times a 10 nm count's rounding variance, and a
-    # quadratic form in the positions themselves marked every sample
+    # quadratic form in the positions themselves marked half the samples
     t = np.arange(20000) * 5e-4
     x = 0.5 + 0.01 * np.sin(2 * np.pi * 0.5 * t)
     motion = derive_motion(t, {"feed_position": np.round(x / 1e-8) * 1e-8}, 1e-4)

@@ -257,15 +257,15 @@ def _passive_friction(ctx: Context, usable):
     hysteresis = PreslidingHysteresis()
     dahl = np.column_stack([hysteresis.columns(ctx, dict.fromkeys(hysteresis.keys, float(d)))
                             for d in hysteresis.distances(ctx)])
-    along = [(ctx.distance, np.linspace(0.0, ctx.distance[-1], LEVEL_KNOTS))]
+    nodes = np.linspace(0.0, ctx.distance[-1], LEVEL_KNOTS)
 
     def columns(when):
         moved = np.interp(when, t, v)
         direction = np.sign(moved)
         hats = [np.interp(np.abs(moved), knots, hat) * direction for hat in np.eye(knots.size)]
         slip = [np.interp(when, t, column) for column in dahl.T]
-        levels = [np.interp(np.interp(when, t, signal), nodes, hat) * direction
-                  for signal, nodes in along for hat in np.eye(LEVEL_KNOTS)]
+        distance = np.interp(when, t, ctx.distance)
+        levels = [np.interp(distance, nodes, hat) * direction for hat in np.eye(LEVEL_KNOTS)]
         return np.column_stack([BASELINE.coulomb_column(ctx, moved), *hats, *slip, *levels,
                                 np.ones(moved.size)])
 
@@ -310,6 +310,12 @@ def decide(run_dir) -> Naming:
 
 def _rms(values, mask) -> float:
     return float(np.sqrt(np.mean(values[mask] ** 2)))
+
+
+def significant_gap(gap, noise, n) -> bool:
+    """Whether an RMS ``gap`` over ``n`` samples exceeds ``noise`` by SIGNIFICANT_ERRORS
+    standard errors (the RMS of n white-noise samples has a relative one of 1 / sqrt(2 n))."""
+    return bool(gap > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * n)) * noise)
 
 
 def _splits(run: MeasuredRun, motion) -> tuple[np.ndarray, list]:
@@ -367,8 +373,7 @@ def _name(ctx: Context) -> Naming:
                               carried / np.ptp(y[usable])))
     span = float(np.ptp(y[usable]))
     gap_cv = locate.gap(y, base_cv, usable)
-    # the RMS of n white-noise samples has a relative standard error of 1 / sqrt(2 n)
-    significant = bool(gap_cv > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * usable.sum())) * noise_cv)
+    significant = significant_gap(gap_cv, noise_cv, int(usable.sum()))
     bic_base = _bic(y - base_cv, usable, baseline.n_parameters)
     ranked, cv_gaps = [], {}
     best_residual, best_parameters, best_score = y - base_cv, baseline.n_parameters, 0.0
@@ -427,8 +432,7 @@ def _name(ctx: Context) -> Naming:
             resolved = usable & ~motion.unresolved
             n_resolved = int(resolved.sum())
             beyond_inputs = n_resolved < MIN_RESOLVED or (
-                _rms(y - base_cv, resolved) / span
-                > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * n_resolved)) * noise_cv
+                significant_gap(_rms(y - base_cv, resolved) / span, noise_cv, n_resolved)
                 and unexplained(resolved, laws, whole))
             if unexplained(usable, laws, whole) and beyond_inputs:
                 effect = "unknown"

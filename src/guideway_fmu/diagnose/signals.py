@@ -376,9 +376,9 @@ def _unresolved(grid: _Grid, on_grid, window, sigma) -> np.ndarray:
     tenth of the peak acceleration, many times a drive's force noise once times its mass. On an
     uneven record the grid holds a spline's values, not measurements of known noise: no sample
     is marked there."""
-    flagged = np.zeros(on_grid.size, dtype=bool)
     if sigma <= 0.0 or on_grid.size < window or not grid.uniform:
         return np.zeros(grid.at.size, dtype=bool)
+    flagged = np.zeros(on_grid.size, dtype=bool)
     half = window // 2
     basis = np.vander((np.arange(window) - half) / half, ORDER + 1, increasing=True)
     maker = np.eye(window) - basis @ np.linalg.pinv(basis)  # residuals of the polynomial fit

@@ -63,8 +63,8 @@ from ..physics.roller_contact import EXPONENT, MICRON, palmgren_stiffness
 from ..reference.vertical import FusedVertical
 from ..scenarios import couple_contact
 from . import locate, regression
-from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, SIGNIFICANT_ERRORS, UNRESOLVED, \
-    _bic, _confidence
+from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _bic, \
+    _confidence, significant_gap
 from .realise import write_replay
 from .run_io import MeasuredRun
 from .signals import NOISY, channel_noise, derive_motion
@@ -490,7 +490,7 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
                 for model in [baseline] + [fitted for _, fitted, _ in ranked[:1]])
     # with the response to the load cell's noise, which the model is driven with as exact
     noise = float(np.hypot(noise, rig.input_noise(baseline.setting) / np.ptp(y[held])))
-    significant = bool(gap_base > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * held.sum())) * noise)
+    significant = significant_gap(gap_base, noise, int(held.sum()))
 
     def share(gap_model):
         return (gap_base**2 - gap_model**2) / max(gap_base**2 - noise**2, 1e-300)
