@@ -237,3 +237,24 @@ def test_a_size_beyond_the_finest_sensor_raises_naming_size(tmp_path):
     """Refusals: a size that asks for noise finer than FINEST_NOISE of the range is refused."""
     with pytest.raises(ValueError, match="size"):
         sv.draw(tmp_path, "unmodeled_mass", 1, n_samples=N, size=1e6)
+
+
+def test_the_load_spectrum_stays_in_its_documented_band_away_from_resonance():
+    """Spectrum of the drawn load (Hann-windowed FFT, independent of how it is built): at least
+    95 % of the dynamic part's energy lies in 0.15-0.65 or 1.3-2 times the stated natural
+    frequency (the module doc), under 1 % within 5 % of resonance, and both bands occur."""
+    above = 0
+    for seed in range(24):
+        rig = sv._draw_rig(seed)
+        times, rate, _ = sv._draw_times(seed, 4000)
+        natural = math.sqrt(sv.Plant(rig.guide, rig.mass).stiffness() / rig.mass) / (2 * math.pi)
+        _, force, _ = sv._draw_load(seed, rig, natural, rate, times[-1])
+        grid = np.linspace(0.0, times[-1], 2**16)
+        dynamic = force(grid) - np.mean(force(grid))
+        power = np.abs(np.fft.rfft(dynamic * np.hanning(grid.size))) ** 2
+        ratio = np.fft.rfftfreq(grid.size, grid[1]) / natural
+        inside = ((ratio > 0.14) & (ratio < 0.66)) | ((ratio > 1.29) & (ratio < 2.01))
+        assert power[inside].sum() > 0.95 * power.sum(), seed
+        assert power[np.abs(ratio - 1.0) < 0.05].sum() < 0.01 * power.sum(), seed
+        above += power[ratio > 1.0].sum() > 0.5 * power.sum()
+    assert 0 < above < 24

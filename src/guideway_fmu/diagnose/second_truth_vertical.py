@@ -547,6 +547,16 @@ def _draw_feed(seed, duration):
 LOAD_BANDS = ((0.15, 0.65), (1.3, 2.0))
 
 
+def band(ratios, natural, rate) -> tuple[float, float]:
+    """The load band [Hz]: ``ratios`` (a LOAD_BANDS entry) times the ``natural`` frequency [Hz],
+    cut at a quarter of the sampling ``rate`` [Hz]. A band above resonance that the cut leaves
+    narrower than 1.2 : 1 gives way to the one below."""
+    low, high = ratios[0] * natural, min(ratios[1] * natural, 0.25 * rate)
+    if high < 1.2 * low and ratios[0] > 1.0:
+        return band(LOAD_BANDS[0], natural, rate)
+    return low, high
+
+
 def _draw_load(seed, rig, natural, rate, duration):
     """The load kind, ``t -> N(t)`` [N] and the highest frequency it holds [Hz]. A constant
     0-50 % of the preload plus a dynamic part peaking at 1-10 % of it, in one of LOAD_BANDS
@@ -557,9 +567,7 @@ def _draw_load(seed, rig, natural, rate, duration):
     preload = rig.guide.preload
     mean = preload * rng.uniform(0.0, 0.5)
     amplitude = preload * rng.uniform(0.01, 0.1)
-    low, high = LOAD_BANDS[int(rng.random() < 0.35)]
-    high = min(high * natural, 0.25 * rate)
-    low = min(low * natural, 0.5 * high)
+    low, high = band(LOAD_BANDS[int(rng.random() < 0.35)], natural, rate)
     if kind == "harmonics":
         count = int(rng.integers(1, 4))
         frequencies = rng.uniform(low, high, count)
