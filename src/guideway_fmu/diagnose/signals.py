@@ -35,7 +35,7 @@ from math import comb
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
-from scipy.signal import savgol_coeffs, savgol_filter
+from scipy.signal import get_window, istft, savgol_coeffs, savgol_filter, stft
 from scipy.stats import chi2
 
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
@@ -58,6 +58,8 @@ COUNTS = 64  # the most lattice steps the least step between samples is searched
 LACK_OF_FIT = 1e-4
 NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
 SMOOTHEST = 513  # longest window [samples] of smooth_channel
+LINE = 9.0  # power over white noise's expected one below which denoise_spectrum drops a bin
+SEGMENT = 512  # samples of denoise_spectrum's windows (98-390 Hz bins at 50-200 kHz)
 GAP = 1.5  # intervals over this many nominal steps are filled in Motion.path
 CLUSTER = 0.1  # samples closer than this many grid steps are averaged before interpolation
 
@@ -93,6 +95,34 @@ def channel_noise(y, orders=(2,)) -> float:
     many times its noise to the second differences, little to the sixth), but at least its
     :func:`rounding_noise`, where most differences are 0 and their MAD says nothing."""
     return max(min(noise_rms(y, order) for order in orders), rounding_noise(y))
+
+
+def denoise_spectrum(time, y) -> tuple[np.ndarray, float, float]:
+    """(values, noise RMS, share of time-frequency bins kept) of a measured channel that drives a
+    lightly damped model, a normal force into an undamped resonance: its white noise would ring
+    the model at the natural frequency, where the load itself may hold nothing. On the uniform
+    grid (:class:`_Grid`), less the line through its end values, the short-time Fourier transform
+    (Hann windows of SEGMENT samples, half overlapping; a Hann window's side lobes fall fast, so
+    a line's power stays in its own bins) keeps of each bin X the share 1 - E / |X|^2 by which
+    it stands above the expected power E of white noise of RMS sigma (spectral subtraction),
+    nothing where |X|^2 is under LINE times E: a bin of noise alone passes once in e^LINE. Two
+    sines 10-100 noise RMS high leave 1-4 % of the noise's power an octave above them. The
+    channel itself (noise 0, all bins) where its noise is under NOISY of its range."""
+    y = np.asarray(y, dtype=float)
+    sigma = channel_noise(y, orders=(2, 4, 6))
+    if sigma <= NOISY * max(float(np.ptp(y)), 1e-300):
+        return y, 0.0, 1.0
+    grid = _Grid(time, 5)
+    g = grid.on_grid(y)
+    line = g[0] + (g[-1] - g[0]) * np.linspace(0.0, 1.0, g.size)
+    segment = int(min(SEGMENT, 2 ** int(np.log2(max(g.size // 4, 16)))))
+    _, _, z = stft(g - line, window="hann", nperseg=segment)
+    window = get_window("hann", segment)
+    ratio = np.abs(z) ** 2 / (sigma**2 * np.sum(window**2) / np.sum(window) ** 2)
+    gain = np.where(ratio > LINE, 1.0 - 1.0 / np.maximum(ratio, 1e-300), 0.0)
+    gain[0] = 1.0  # the slow part is the load's, not noise
+    _, out = istft(gain * z, window="hann", nperseg=segment)
+    return grid.back(line + out[:g.size]), sigma, float(np.mean(gain[1:] > 0))
 
 
 def smooth_channel(time, y) -> tuple[np.ndarray, "Derivation"]:

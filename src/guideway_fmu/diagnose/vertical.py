@@ -18,7 +18,13 @@ contact's tangent and force law handed to the carriage. What the format fixes, m
 * the record starts at rest in static equilibrium under gravity and the first normal force, the
   film steady at the first feed velocity (VerticalDynamics.y_start);
 * the compared channel is the carriage's y (vertical_displacement) or its kinematic y''
-  (vertical_acceleration), plus a constant offset: the baseline's only calibration.
+  (vertical_acceleration), plus a constant offset: the baseline's calibration;
+* a noisy normal force is denoised before it drives the model (signals.denoise_spectrum: the
+  model has no damping, and the load cell's white noise would ring it at its natural frequency
+  for the whole record), and where the first sample's noise alone would start a free vibration
+  above a tenth of the channel's noise, every model is also calibrated in the start's force
+  (Setting.start_force, :func:`calibrate`): the record starts in equilibrium under the true
+  first force, of which the sample is only a noisy reading.
 
 Ball guides are refused: the contact FMUs model roller rows.
 
@@ -67,7 +73,7 @@ from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _bic, \
     _confidence, significant_gap
 from .realise import write_replay
 from .run_io import MeasuredRun
-from .signals import NOISY, channel_noise, derive_motion
+from .signals import channel_noise, denoise_spectrum, derive_motion
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
 FMUS = ("FeedKinematics", "ForceTable", "VerticalDynamics", *CONTACT_FMUS.values())
@@ -78,6 +84,8 @@ REFINEMENTS = 2  # halvings of the realisation's macro step at most
 REALISED = 0.3  # the realisation's RMS deviation from the decision's model, in noise floors
 INPUT_NOISE_SEED = 0  # of the white noise VerticalRig.input_noise drives the model with
 SIMULATIONS = 6  # most simulations a candidate's fit takes
+START_STEP = 3.0  # load noise RMS of the start's secant in calibrate
+START_MATTERS = 0.1  # free vibration of one load noise RMS at the start, in channel noise RMS
 STEP, TRUST = 0.05, 0.7  # the fit's first step and its largest, in its parameter (fit_candidate)
 TUNED_SPAN = 0.003  # half-width of the search around the value matching the natural frequency
 FREQUENCY_STEPS = 4  # secant steps matching the simulated free-vibration frequency
@@ -88,13 +96,15 @@ MAX_RTOL = 1e-7  # ... and keeps the phase of an undamped vibration over hundred
 @dataclass(frozen=True)
 class Setting:
     """A vertical model's physical parameters: moving mass [kg], contact, the contact FMU's F0
-    [N], lubricant viscosity [Pa s] and pressure-viscosity coefficient [1/Pa]."""
+    [N], lubricant viscosity [Pa s] and pressure-viscosity coefficient [1/Pa]; ``start_force``
+    [N]: the first normal-force sample's error, which the start's equilibrium corrects."""
 
     mass: float
     contact: str
     preload: float
     viscosity: float
     pressure_viscosity: float
+    start_force: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -166,9 +176,12 @@ class VerticalRig:
         self.folder = Path(folder)
         self.folder.mkdir(parents=True, exist_ok=True)
         self.replay = write_replay(self.motion, self.folder / "replay.csv")
-        normal = (run.columns["normal_force"] if "normal_force" in run.columns
-                  else np.full(run.time.size, run.normal_force()))
-        self.normal = np.asarray(normal, dtype=float)
+        if "normal_force" in run.columns:  # its white noise would ring the undamped model
+            self.normal, self.load_noise, self.load_kept = denoise_spectrum(
+                run.time, run.columns["normal_force"])
+        else:
+            self.normal = np.full(run.time.size, run.normal_force())
+            self.load_noise, self.load_kept = 0.0, 1.0
         self.load = self.folder / "load.csv"
         with self.load.open("w", newline="") as handle:
             writer = csv.writer(handle)
@@ -197,6 +210,7 @@ class VerticalRig:
         self.rtol = float(np.clip(RESOLUTION * span / LENGTH_SCALE, 1e-10, MAX_RTOL))
         self.cache: dict = {}
         self.fused: FusedVertical | None = None  # the last model simulated (its tables reused)
+        self._start_matters: bool | None = None
 
     def contact_parameters(self, setting: Setting) -> dict:
         parameters = {**self.geometry, "preload": setting.preload}
@@ -208,8 +222,8 @@ class VerticalRig:
     def start(self, setting: Setting) -> float:
         """y [m] of the static equilibrium under gravity and the first normal force, the film
         steady at the first feed velocity."""
-        return gw.static_displacement(self.guideway(setting),
-                                      setting.mass * STANDARD_GRAVITY + float(self.normal[0]),
+        return gw.static_displacement(self.guideway(setting), setting.mass * STANDARD_GRAVITY
+                                      + float(self.normal[0]) + setting.start_force,
                                       float(self.motion.v[0]), setting.contact == "ehl")
 
     def guideway(self, setting: Setting) -> gw.Guideway:
@@ -286,25 +300,35 @@ class VerticalRig:
         return b.system()
 
     def input_noise(self, setting: Setting) -> float:
-        """RMS [channel units] of what the normal force channel's noise puts into the response
-        of ``setting``: the model driven twice with the channel plus independent white noise of
-        the channel's RMS (signals.channel_noise over differences of order 2, 4 and 6), the RMS
-        of the difference over sqrt 2. The model is undamped
-        near its natural frequency, where the noise's share piles up over the record's periods.
-        0 where the channel is not recorded or is exact (noise under NOISY of its range)."""
-        if "normal_force" not in self.run.columns:
-            return 0.0
-        sigma = channel_noise(self.normal, orders=(2, 4, 6))
-        if sigma <= NOISY * float(np.ptp(self.normal)):
+        """RMS [channel units] of what the normal force channel's noise, left by
+        signals.denoise_spectrum, puts into the response of ``setting``: the model driven twice
+        with the denoised channel plus independent white noise of the channel's RMS, each
+        denoised again, the RMS of the difference over sqrt 2. The model is undamped near its
+        natural frequency, where the noise's share piles up over the record's periods. 0 where
+        the channel is not recorded or is exact (its noise under signals.NOISY of its range)."""
+        if self.load_noise == 0.0:
             return 0.0
         rng = np.random.default_rng(INPUT_NOISE_SEED)
         fused = FusedVertical(self.system(setting), self.fused)
         responses = []
         for _ in range(2):
-            fused.load = ForceTable(self.run.time, self.normal
-                                    + sigma * rng.standard_normal(self.normal.size))
+            noisy = self.normal + self.load_noise * rng.standard_normal(self.normal.size)
+            fused.load = ForceTable(self.run.time, denoise_spectrum(self.run.time, noisy)[0])
             responses.append(fused.simulate(self.run.time, self.rtol, [self.column])[self.column])
         return float(np.sqrt(np.mean((responses[0] - responses[1]) ** 2) / 2.0))
+
+    def start_matters(self, y) -> bool:
+        """Whether the first normal-force sample's noise starts a free vibration of the baseline
+        above START_MATTERS of the channel's noise (``y``'s, signals.channel_noise): the record
+        starts at rest in equilibrium under the true first force, which that sample misses by
+        its noise, and the model has no damping to forget it. Decided once per rig."""
+        if self._start_matters is None:
+            self._start_matters = False
+            if self.load_noise > 0.0:
+                shifted = dataclasses.replace(self.base, start_force=self.load_noise)
+                ringing = float(np.std(self.predict(shifted) - self.predict(self.base)))
+                self._start_matters = ringing > START_MATTERS * channel_noise(y, (2, 4, 6))
+        return self._start_matters
 
     def predict(self, setting: Setting) -> np.ndarray:
         """The compared channel of ``setting`` at the sample times, without offset (the
@@ -329,14 +353,31 @@ class VerticalFit:
     n_parameters: int
 
 
-def _offset(y, f, mask) -> float:
-    return float(np.mean((y - f)[mask]))
+def calibrate(rig: VerticalRig, setting: Setting, y, mask) -> tuple:
+    """(setting, prediction, offset, parameters) of ``setting`` calibrated on ``mask``: the
+    channel's offset and, where the normal force is noisy (VerticalRig.start_matters), the
+    first sample's error (Setting.start_force), both by linear least squares, the start's
+    effect by its secant over START_STEP noise RMS of the load (the rows are linear to 1e-4 over
+    a few load noise RMS of a preload of kN)."""
+    f = rig.predict(setting)
+    columns = [np.ones_like(f)]
+    if rig.start_matters(y):
+        step = START_STEP * rig.load_noise
+        columns.append((rig.predict(dataclasses.replace(
+            setting, start_force=setting.start_force + step)) - f) / step)
+    coefficients, *_ = np.linalg.lstsq(np.column_stack(columns)[mask], (y - f)[mask], rcond=None)
+    prediction = f + np.column_stack(columns) @ coefficients
+    parameters = {"offset": float(coefficients[0])}
+    if len(columns) > 1:
+        setting = dataclasses.replace(setting,
+                                      start_force=setting.start_force + float(coefficients[1]))
+        parameters["start_force"] = setting.start_force
+    return setting, prediction, float(coefficients[0]), parameters
 
 
 def fit_baseline(rig: VerticalRig, y, mask) -> VerticalFit:
-    f = rig.predict(rig.base)
-    c = _offset(y, f, mask)
-    return VerticalFit("none", rig.base, f + c, c, {"offset": c}, 1)
+    setting, prediction, c, parameters = calibrate(rig, rig.base, y, mask)
+    return VerticalFit("none", setting, prediction, c, parameters, len(parameters))
 
 
 def tuned_start(rig: VerticalRig, candidate: Candidate, y) -> float | None:
@@ -374,11 +415,11 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
     q_lo, q_hi = to_q(lo), to_q(hi)
     seen = {}
 
-    def evaluate(q):
+    def evaluate(q):  # (q, prediction, offset, sum of squares, calibrated setting, parameters)
         if q not in seen:
-            f = rig.predict(candidate.change(rig.base, from_q(q)))
-            c = _offset(y, f, mask)
-            seen[q] = (q, f, c, float(np.sum((y - f - c)[mask] ** 2)))
+            setting, f, c, calibration = calibrate(rig, candidate.change(rig.base, from_q(q)),
+                                                   y, mask)
+            seen[q] = (q, f, c, float(np.sum((y - f)[mask] ** 2)), setting, calibration)
         return seen[q]
 
     tuned = tuned_start(rig, candidate, y)
@@ -414,22 +455,21 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
                          evaluate(start + STEP if start + STEP <= q_hi else start - STEP)],
                         key=lambda p: p[3])
         for _ in range(SIMULATIONS - 2):
-            (q1, f1, _, _), (q0, f0, _, _) = points
+            (q1, f1, *_), (q0, f0, *_) = points
             design = np.column_stack([((f1 - f0) / (q1 - q0))[mask], np.ones(int(mask.sum()))])
             (dq, _), *_ = np.linalg.lstsq(design, (y - f1)[mask], rcond=None)
             q = float(np.clip(q1 + np.clip(dq, -TRUST, TRUST), q_lo, q_hi))
             if abs(q - q1) < 1e-3 or abs(q - q0) < 1e-9:
                 break
             points = sorted(points + [evaluate(q)], key=lambda p: p[3])[:2]
-    q, f, c, _ = min(seen.values(), key=lambda p: p[3])
+    q, f, c, _, setting, calibration = min(seen.values(), key=lambda p: p[3])
     value = from_q(q)
-    setting = candidate.change(rig.base, value)
-    parameters = {candidate.parameter: value, "offset": c}
+    parameters = {candidate.parameter: value, **calibration}
     if candidate.effect == "preload_loss":  # as the rig file states it, over all elements
         parameters["preload"] = float(rig.run.sections["guideway"]["preload"]) * value
     elif candidate.effect == "lubricant_film":
         parameters["viscosity"] = setting.viscosity
-    return VerticalFit(candidate.effect, setting, f + c, c, parameters, 2)
+    return VerticalFit(candidate.effect, setting, f, c, parameters, 1 + len(calibration))
 
 
 @dataclass
@@ -451,6 +491,7 @@ class VerticalNaming:
     equation: str | None
     confidence: float
     frequencies: list
+    not_told_apart: list  # effects that explain the record as well as the named one
 
 
 def law_terms(rig: VerticalRig, frequencies) -> dict:
@@ -513,9 +554,24 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
                 equation = " + ".join(f"{c:.6g}*{t}" if t != "1" else f"{c:.6g}"
                                       for t, c in coefficients.items()) or "0"
     scores = {"none": 0.0, **{f.effect: s for s, f, _ in ranked}}
+    twins = _not_told_apart(ranked, winner, y, held, share) if winner is not None else []
+    for twin in twins:  # the record holds no evidence between them: they share the best score
+        scores[twin] = scores[effect]
     return VerticalNaming(run, rig, y, fit_mask, held, baseline, noise, gap_base, significant,
                           ranked, effect, winner, equation, _confidence(scores, effect),
-                          frequencies)
+                          frequencies, twins)
+
+
+def _not_told_apart(ranked, winner, y, held, share) -> list[str]:
+    """Effects besides ``winner`` that explain the record too (share of EXPLAINED) and score
+    within SCORE_MIN of it in independent samples (the BIC difference over the integrated
+    autocorrelation time of the winner's held-out residual). Stiffness and mass meet in the
+    natural frequency sqrt(k / m): a record whose response is dominated by it (ringing, a
+    narrow load band) cannot tell a lost preload from an added mass."""
+    margin = SCORE_MIN * locate.correlation_time(y - winner.prediction, held)
+    top = ranked[0][0]
+    return [fitted.effect for score, fitted, gap in ranked
+            if fitted is not winner and top - score < margin and share(gap) >= EXPLAINED]
 
 
 @dataclass
