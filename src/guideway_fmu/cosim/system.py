@@ -144,9 +144,17 @@ class System:
     def unit(self, instance: str, variable: str) -> str:
         return self.variables[instance][variable].unit or ""
 
-    def with_changes(self, fmus: dict[str, Path] | None = None, **experiment) -> "System":
-        """A copy with some FMU files replaced (instance -> path) and experiment fields changed."""
-        comps = {n: Component(n, Path((fmus or {}).get(n, c.fmu)), c.parameters)
+    def with_changes(self, fmus: dict[str, Path] | None = None,
+                     parameters: dict[str, dict] | None = None, **experiment) -> "System":
+        """A copy with some FMU files replaced (instance -> path), some parameters set
+        (instance -> {parameter: value}) and experiment fields changed; the copy is checked as
+        a loaded scenario is (an unknown instance or field is an error naming it)."""
+        unknown = sorted(set(parameters or {}) - set(self.components))
+        if unknown:
+            raise ScenarioError(f"{self.path or self.name}: no component {unknown[0]!r} to set "
+                                f"parameters of; the components are {sorted(self.components)}")
+        comps = {n: Component(n, Path((fmus or {}).get(n, c.fmu)),
+                              {**c.parameters, **(parameters or {}).get(n, {})})
                  for n, c in self.components.items()}
         exp = Experiment(**{**self.experiment.__dict__, **experiment})
         return check(System(self.name, self.path, comps, self.connections, exp, self.tangents,
