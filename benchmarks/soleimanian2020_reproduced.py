@@ -53,14 +53,16 @@ CAUSES = {
     "S45": "The load per roller: the explicit central pressure follows the Hertz pressure of "
            "the roller load, 0.43 GPa at Q0 = 115 N and 0.61 GPa at 230 N; 0.8-1.0 GPa needs "
            "about 460 N per roller, the groove reading.",
-    "S49": "As S45: the largest roller load of the cycle at 9000 N / 9000 Hz gives 0.82 GPa "
-           "under the carriage reading.",
+    "S49": "As S45: the explicit central pressure follows the Hertz pressure of the largest "
+           "roller load of the cycle, which the lighter preload keeps lower.",
     "S38 (2500 Hz)": "The film adds to each roller's approach (eq. 3) and so stiffens the rows: "
-                     "it moves the loaded resonance as well as adding load. Where the lightest "
-                     "preload leaves the excitation on the falling side of that resonance the "
-                     "peak load drops (measured; the mechanism is our reading of the runs).",
-    "S38 (4500 Hz)": "As at 2500 Hz; 4500 Hz lies closer to the loaded resonance, where its "
-                     "shift weighs more.",
+                     "it moves the loaded resonance as well as adding load, and where the "
+                     "excitation lies on the falling side of that resonance the peak load drops "
+                     "(measured; the mechanism is our reading of the runs).",
+    "S38 (4500 Hz)": "The film adds to each roller's approach (eq. 3) and so stiffens the rows: "
+                     "it moves the loaded resonance as well as adding load. 4500 Hz lies close to "
+                     "the loaded resonance of the lighter preloads, where that shift lowers the "
+                     "peak load (measured; the mechanism is our reading of the runs).",
     "S21": "The start excites a free vibration at the natural frequency that the undamped "
            "model (eqs. 1-5 have no damping) carries over the whole cycle, 2-4 orders above the "
            "feed's line; the feed's film change enters both rows alike and cancels in the net "
