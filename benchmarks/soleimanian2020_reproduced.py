@@ -102,12 +102,14 @@ def explicit(load: float, speed: float) -> dict:
         load=load / c.length, velocity=abs(speed) / 2, radius=c.radius, e_reduced=c.e_reduced,
         viscosity=c.viscosity, pressure_viscosity=c.pressure_viscosity))
     central = float(np.interp(0.0, result.x, result.p))
-    return {"h_c": out["h_c"], "p_c": central, "p_max": out["p_max"]}
+    return {"h_c": out["h_c"], "p_c": central, "p_max": out["p_max"], "x": result.x,
+            "p": result.p, "h": result.h}
 
 
-def statements(readings, runs) -> list[dict]:
+def statements(readings, runs, solutions: dict) -> list[dict]:
     """Each published statement: id, source, what the paper says, our value per reading and
-    whether it agrees, with the reason."""
+    whether it agrees, with the reason. The explicit EHL solutions it makes go into
+    ``solutions`` ("unloaded", "loaded": reading -> solution) for the figures."""
     rows = []
 
     def add(sid, source, said, values, agree, why):
@@ -141,6 +143,7 @@ def statements(readings, runs) -> list[dict]:
         i = int(np.argmax(np.abs(u["Feed.u"])))
         explicit_unloaded[r.name] = (explicit(float(np.mean(u["Contact.F_upper"])),
                                               float(u["Feed.u"][i])), float(u["Contact.h_upper"][i]))
+    solutions["unloaded"] = {k: e for k, (e, _) in explicit_unloaded.items()}
     add("S44", "Fig. 33, conclusion 2", "the implicit (eq. 4) and explicit central films agree, "
         "unloaded", {k: f"implicit / explicit {h / e['h_c']:.2f}"
                      for k, (e, h) in explicit_unloaded.items()},
@@ -157,6 +160,7 @@ def statements(readings, runs) -> list[dict]:
         u = run(r, "soleimanian2020_9000N_9000Hz")
         i = int(np.argmax(u["Contact.F_upper"]))
         loaded[r.name] = explicit(float(u["Contact.F_upper"][i]), max(abs(float(u["Feed.u"][i])), 0.01))
+    solutions["loaded"] = loaded
     add("S49", "Fig. 35", "9000 N at 9000 Hz: central pressure up to 1.1 GPa (spikes to 1.3)",
         {k: f"{e['p_c'] / 1e9:.2f} GPa (peak {e['p_max'] / 1e9:.2f})" for k, e in loaded.items()},
         {k: 0.9e9 <= e["p_c"] <= 1.3e9 for k, e in loaded.items()},
@@ -254,9 +258,11 @@ def statements(readings, runs) -> list[dict]:
     return rows
 
 
-def figures(readings, runs, out: Path) -> list[str]:
-    """Envelopes against frequency (Figs. 22, 25, 28), dry against lubricated (Figs. 30-31) and
-    the upper films at 6000 N (Fig. 23), per reading; returns the markdown image lines."""
+def figures(readings, runs, solutions, out: Path) -> list[str]:
+    """Envelopes against frequency (Figs. 22, 25, 28), dry against lubricated (Figs. 30-31),
+    the upper films at 6000 N (Fig. 23), the displacement's spectra (Figs. 14, 19b) and the
+    explicit EHL pressures and films (``solutions``: "unloaded" and "loaded" by reading; Figs. 33,
+    35), per reading; returns the markdown image lines."""
     out.mkdir(parents=True, exist_ok=True)
     lines = []
     fig, axes = plt.subplots(1, len(readings), figsize=(5 * len(readings), 3.8), sharey=True)
@@ -306,6 +312,49 @@ def figures(readings, runs, out: Path) -> list[str]:
     plt.close(fig)
     lines.append("![Upper roller film over the feed cycle at 6000 N (cf. Fig. 23)]"
                  "(figures/soleimanian2020_films_6000N.png)")
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
+    for ax, name, title in ((axes[0], "soleimanian2020_unloaded", "unloaded (cf. Fig. 14)"),
+                            (axes[1], "soleimanian2020_9000N_3000Hz", "9000 N, 3000 Hz (cf. Fig. 19b)")):
+        for r in readings:
+            c = steady(runs[r.name, name])
+            v = c["Carriage.y"] - np.mean(c["Carriage.y"])
+            window = np.hanning(v.size)
+            amplitude = np.abs(np.fft.rfft(v * window)) * 2 / window.sum()
+            f = np.fft.rfftfreq(v.size, float(c["time"][1] - c["time"][0]))
+            keep = (f > 0) & (f < 20000)
+            ax.loglog(f[keep], 1e9 * amplitude[keep], lw=0.7, label=f"'{r.name}'")
+        ax.axvline(5.0, color="grey", ls=":")
+        ax.axvline(paper.PAPER_NATURAL_FREQUENCY, color="grey", ls="--")
+        ax.set(title=f"displacement spectrum, {title}", xlabel="frequency [Hz]",
+               ylabel="displacement amplitude [nm]")
+        ax.grid(alpha=0.3, which="both")
+    axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "soleimanian2020_spectra.png", dpi=110)
+    plt.close(fig)
+    lines.append("![Spectra of the rail's displacement, the feed (5 Hz, dotted) and the published "
+                 "natural frequency (dashed) marked (cf. Figs. 14, 19b)]"
+                 "(figures/soleimanian2020_spectra.png)")
+    fig, axes = plt.subplots(2, 2, figsize=(11, 6.5), sharex="col")
+    for col, (key, title) in enumerate((("unloaded", "unloaded, mean upper load (cf. Fig. 33)"),
+                                        ("loaded", "9000 N, 9000 Hz, largest upper load "
+                                                   "(cf. Fig. 35)"))):
+        for r in readings:
+            e = solutions[key][r.name]
+            axes[0][col].plot(1e6 * e["x"], e["p"] / 1e9, lw=0.9, label=f"'{r.name}'")
+            axes[1][col].plot(1e6 * e["x"], 1e9 * e["h"], lw=0.9)
+        central = max(solutions[key][r.name]["h_c"] for r in readings)
+        axes[0][col].set(title=title, ylabel="pressure [GPa]", xlim=(-150.0, 100.0))
+        axes[1][col].set(xlabel="distance from the contact centre [um]", ylabel="film [nm]",
+                         ylim=(0.0, 4e9 * central))
+        for ax in axes[:, col]:
+            ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "soleimanian2020_pressures.png", dpi=110)
+    plt.close(fig)
+    lines.append("![Explicit (steady, numerical) EHL pressure and film of the upper roller "
+                 "(cf. Figs. 33, 35)](figures/soleimanian2020_pressures.png)")
     return lines
 
 
@@ -320,7 +369,8 @@ def main(argv=None) -> None:
     jobs = [(r, n, fmus) for r in readings for n in names()]
     with Pool(args.jobs) as pool:
         runs = {(r, n): cols for r, n, cols in pool.imap_unordered(one_run, jobs)}
-    rows = statements(readings, runs)
+    solutions: dict = {}
+    rows = statements(readings, runs, solutions)
     count = {r.name: sum(row["agree"][r.name] for row in rows) for r in readings}
     default = max(readings, key=lambda r: count[r.name])
     out = Path(args.out)
@@ -366,7 +416,7 @@ def main(argv=None) -> None:
               "authors' measurements exist only as figures); the EHL solver against Masjedi and "
               "Khonsari (Figs. 9-10: docs/ehl-validation.md); the odd harmonics of the rig's "
               "measured response (Fig. 8: a measurement).", "", "## Figures", ""]
-    lines += figures(readings, runs, out.parent / "figures")
+    lines += figures(readings, runs, solutions, out.parent / "figures")
     text = "\n".join(lines) + "\n"
     print(text)
     out.write_text(text)
