@@ -373,3 +373,14 @@ def test_denoising_white_noise_alone_leaves_its_mean_and_an_exact_channel_unchan
     exact = 200.0 + 30.0 * np.sin(2 * np.pi * 900.0 * even)
     values, estimate, kept = signals.denoise_spectrum(even, exact)
     assert np.array_equal(values, exact) and estimate == 0.0 and kept == 1.0
+
+
+@pytest.mark.parametrize("samples", [10, 31])
+def test_a_record_too_short_to_tell_lines_from_noise_is_returned_as_it_is_with_its_noise(samples):
+    """Limiting case: under two 16-sample windows the channel comes back unchanged, its noise
+    estimated (so the model's response to it still enters the floor), every bin kept."""
+    rng = np.random.default_rng(2)
+    t = np.arange(samples) / 1e4
+    noisy = 100.0 + 10.0 * np.sin(3000.0 * t) + rng.standard_normal(samples)
+    values, estimate, kept = signals.denoise_spectrum(t, noisy)
+    assert np.array_equal(values, noisy) and estimate > 0.0 and kept == 1.0

@@ -60,6 +60,7 @@ NEGLIGIBLE = 1e-4  # acceleration noise / range below which no model can tell it
 SMOOTHEST = 513  # longest window [samples] of smooth_channel
 LINE = 9.0  # power over white noise's expected one below which denoise_spectrum drops a bin
 SEGMENT = 512  # samples of denoise_spectrum's windows (98-390 Hz bins at 50-200 kHz)
+SHORTEST_SEGMENT = 16  # samples of its windows on a short record
 GAP = 1.5  # intervals over this many nominal steps are filled in Motion.path
 CLUSTER = 0.1  # samples closer than this many grid steps are averaged before interpolation
 
@@ -107,15 +108,19 @@ def denoise_spectrum(time, y) -> tuple[np.ndarray, float, float]:
     it stands above the expected power E of white noise of RMS sigma (spectral subtraction),
     nothing where |X|^2 is under LINE times E: a bin of noise alone passes once in e^LINE. Two
     sines 10-100 noise RMS high leave 1-4 % of the noise's power an octave above them. The
-    channel itself (noise 0, all bins) where its noise is under NOISY of its range."""
+    channel itself (noise 0, all bins) where its noise is under NOISY of its range; as it is,
+    with its noise, where it is shorter than two of the shortest windows (16 samples), too
+    short to tell a line from noise."""
     y = np.asarray(y, dtype=float)
     sigma = channel_noise(y, orders=(2, 4, 6))
     if sigma <= NOISY * max(float(np.ptp(y)), 1e-300):
         return y, 0.0, 1.0
     grid = _Grid(time, 5)
     g = grid.on_grid(y)
+    if g.size < 2 * SHORTEST_SEGMENT:
+        return y, sigma, 1.0
     line = g[0] + (g[-1] - g[0]) * np.linspace(0.0, 1.0, g.size)
-    segment = int(min(SEGMENT, 2 ** int(np.log2(max(g.size // 4, 16)))))
+    segment = int(min(SEGMENT, 2 ** int(np.log2(max(g.size // 4, SHORTEST_SEGMENT)))))
     _, _, z = stft(g - line, window="hann", nperseg=segment)
     window = get_window("hann", segment)
     ratio = np.abs(z) ** 2 / (sigma**2 * np.sum(window**2) / np.sum(window) ** 2)
