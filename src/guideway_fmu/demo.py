@@ -29,9 +29,7 @@ from .cosim import plots, run, system  # noqa: E402
 from .cosim.fmu_instance import FmuInstance  # noqa: E402
 from .diagnose import truth, workflow  # noqa: E402
 from .physics import carriage, film, guideway  # noqa: E402
-
-RIG_SPEED = 0.29  # m/s, feed speed amplitude of the rig's bi-harmonic fit (eq. 1a)
-PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, Soleimanian et al. 2020, unloaded case
+from .analysis.soleimanian2020 import PAPER_NATURAL_FREQUENCY, RIG_SPEED  # noqa: E402
 
 
 def rig_facts(u: float = RIG_SPEED) -> dict:

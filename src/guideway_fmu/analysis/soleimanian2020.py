@@ -22,11 +22,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..cosim.plots import spectrum
 from ..physics import guideway
-from ..physics.film import LineContact, film_law
+from ..physics.film import film_law
+from ..physics.roller_contact import approach_for_load
 
 PRELOAD = 9200.0  # N, Table 2
-GROOVES = 4
 PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, the unloaded rig
 RIG_SPEED = 0.29  # m/s, amplitude of the rig's bi-harmonic feed (eq. 1a, A1 = 0.2919)
 SHARES = {"carriage": 1, "side": 2, "groove": 4}  # the 9200 N over 4 / n of the grooves
@@ -43,7 +44,7 @@ class Reading:
 
     @property
     def preload_per_roller(self) -> float:
-        return self.preload / (GROOVES * guideway.Guideway().rollers_per_groove)
+        return self.guideway().preload_per_roller
 
     def parameters(self) -> dict[str, dict]:
         """The scenario parameters of this reading (instance -> {parameter: value}): the
@@ -54,20 +55,22 @@ class Reading:
         return guideway.Guideway(preload=self.preload)
 
 
-def natural_frequency(g: guideway.Guideway, mass: float, lubricated: bool = True) -> float:
+def _stiffness(g: guideway.Guideway) -> float:
+    """Quasi-static stiffness [N/m] at rest, lubricated, at the rig's feed speed."""
+    return float(guideway.quasi_static_stiffness(g, 0.0, RIG_SPEED))
+
+
+def natural_frequency(g: guideway.Guideway, mass: float) -> float:
     """Linearised unloaded natural frequency [Hz] at the rig's feed speed."""
-    k = float(guideway.quasi_static_stiffness(g, 0.0, RIG_SPEED, lubricated))
-    return math.sqrt(k / mass) / (2 * math.pi)
+    return math.sqrt(_stiffness(g) / mass) / (2 * math.pi)
 
 
 def readings() -> list[Reading]:
     """The three readings, the mass of each fitted to the published natural frequency."""
-    out = []
-    for name, share in SHARES.items():
-        g = guideway.Guideway(preload=PRELOAD * share)
-        k = float(guideway.quasi_static_stiffness(g, 0.0, RIG_SPEED, True))
-        out.append(Reading(name, PRELOAD * share, k / (2 * math.pi * PAPER_NATURAL_FREQUENCY) ** 2))
-    return out
+    omega = 2 * math.pi * PAPER_NATURAL_FREQUENCY
+    return [Reading(name, PRELOAD * share,
+                    _stiffness(guideway.Guideway(preload=PRELOAD * share)) / omega**2)
+            for name, share in SHARES.items()]
 
 
 def film_to_solid_stiffness(g: guideway.Guideway) -> float:
@@ -75,15 +78,9 @@ def film_to_solid_stiffness(g: guideway.Guideway) -> float:
     the rig's feed speed: (F / (m h)) / ((10/9) F / delta) = 9 delta / (10 m h), from the steady
     film h = C F^-m in series with Palmgren's contact."""
     f_u, _, h_u, _ = guideway.quasi_static_state(g, 0.0, RIG_SPEED)
-    delta = (float(f_u) / g.k) ** 0.9
+    delta = float(approach_for_load(f_u, g.k))
     _, m = film_law(g.contact, RIG_SPEED)
     return 9.0 * delta / (10.0 * m * float(h_u))
-
-
-def hertz_pressure(load: float, contact: LineContact = LineContact()) -> float:
-    """Peak Hertz pressure [Pa] of a roller load [N] on a line contact: sqrt(w E' / (2 pi R)),
-    w = load / length."""
-    return math.sqrt(load / contact.length * contact.e_reduced / (2 * math.pi * contact.radius))
 
 
 def band_share(time, values, low: float, high: float) -> float:
@@ -98,11 +95,8 @@ def band_share(time, values, low: float, high: float) -> float:
 
 def spectrum_peak(time, values, low: float, high: float) -> tuple[float, float]:
     """(frequency [Hz], amplitude) of the largest line of ``values`` between ``low`` and ``high``
-    [Hz] (Hann window, single-sided amplitude)."""
-    v = np.asarray(values, dtype=float) - np.mean(values)
-    window = np.hanning(v.size)
-    amplitude = np.abs(np.fft.rfft(v * window)) * 2 / window.sum()
-    f = np.fft.rfftfreq(v.size, float(time[1] - time[0]))
+    [Hz] in their amplitude spectrum (cosim.plots.spectrum)."""
+    f, amplitude = spectrum(time, values)
     inside = np.flatnonzero((f >= low) & (f <= high))
     best = inside[np.argmax(amplitude[inside])]
     return float(f[best]), float(amplitude[best])

@@ -354,7 +354,7 @@ class VerticalFit:
 
 
 def calibrate(rig: VerticalRig, setting: Setting, y, mask) -> tuple:
-    """(setting, prediction, offset, parameters) of ``setting`` calibrated on ``mask``: the
+    """(setting, prediction, parameters) of ``setting`` calibrated on ``mask``: the
     channel's offset and, where the normal force is noisy (VerticalRig.start_matters), the
     first sample's error (Setting.start_force), both by linear least squares, the start's
     effect by its secant over START_STEP noise RMS of the load (the rows are linear to 1e-4 over
@@ -372,12 +372,13 @@ def calibrate(rig: VerticalRig, setting: Setting, y, mask) -> tuple:
         setting = dataclasses.replace(setting,
                                       start_force=setting.start_force + float(coefficients[1]))
         parameters["start_force"] = setting.start_force
-    return setting, prediction, float(coefficients[0]), parameters
+    return setting, prediction, parameters
 
 
 def fit_baseline(rig: VerticalRig, y, mask) -> VerticalFit:
-    setting, prediction, c, parameters = calibrate(rig, rig.base, y, mask)
-    return VerticalFit("none", setting, prediction, c, parameters, len(parameters))
+    setting, prediction, parameters = calibrate(rig, rig.base, y, mask)
+    return VerticalFit("none", setting, prediction, parameters["offset"], parameters,
+                       len(parameters))
 
 
 def tuned_start(rig: VerticalRig, candidate: Candidate, y) -> float | None:
@@ -415,11 +416,11 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
     q_lo, q_hi = to_q(lo), to_q(hi)
     seen = {}
 
-    def evaluate(q):  # (q, prediction, offset, sum of squares, calibrated setting, parameters)
+    def evaluate(q):  # (q, prediction, sum of squares, calibrated setting, its calibration)
         if q not in seen:
-            setting, f, c, calibration = calibrate(rig, candidate.change(rig.base, from_q(q)),
-                                                   y, mask)
-            seen[q] = (q, f, c, float(np.sum((y - f)[mask] ** 2)), setting, calibration)
+            setting, f, calibration = calibrate(rig, candidate.change(rig.base, from_q(q)),
+                                                y, mask)
+            seen[q] = (q, f, float(np.sum((y - f)[mask] ** 2)), setting, calibration)
         return seen[q]
 
     tuned = tuned_start(rig, candidate, y)
@@ -445,15 +446,15 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
             if peak is None:
                 break
             pairs.append((q, peak))
-        q0 = min(seen.values(), key=lambda p: p[3])[0]
-        minimize_scalar(lambda q: evaluate(q)[3], method="bounded",
+        q0 = min(seen.values(), key=lambda p: p[2])[0]
+        minimize_scalar(lambda q: evaluate(q)[2], method="bounded",
                         bounds=(max(q0 - TUNED_SPAN, q_lo), min(q0 + TUNED_SPAN, q_hi)),
                         options={"maxiter": SIMULATIONS, "xatol": 1e-5})
     else:
         start = float(np.clip(to_q(candidate.start), q_lo, q_hi))
         points = sorted([evaluate(start),
                          evaluate(start + STEP if start + STEP <= q_hi else start - STEP)],
-                        key=lambda p: p[3])
+                        key=lambda p: p[2])
         for _ in range(SIMULATIONS - 2):
             (q1, f1, *_), (q0, f0, *_) = points
             design = np.column_stack([((f1 - f0) / (q1 - q0))[mask], np.ones(int(mask.sum()))])
@@ -461,15 +462,16 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
             q = float(np.clip(q1 + np.clip(dq, -TRUST, TRUST), q_lo, q_hi))
             if abs(q - q1) < 1e-3 or abs(q - q0) < 1e-9:
                 break
-            points = sorted(points + [evaluate(q)], key=lambda p: p[3])[:2]
-    q, f, c, _, setting, calibration = min(seen.values(), key=lambda p: p[3])
+            points = sorted(points + [evaluate(q)], key=lambda p: p[2])[:2]
+    q, f, _, setting, calibration = min(seen.values(), key=lambda p: p[2])
     value = from_q(q)
     parameters = {candidate.parameter: value, **calibration}
     if candidate.effect == "preload_loss":  # as the rig file states it, over all elements
         parameters["preload"] = float(rig.run.sections["guideway"]["preload"]) * value
     elif candidate.effect == "lubricant_film":
         parameters["viscosity"] = setting.viscosity
-    return VerticalFit(candidate.effect, setting, f, c, parameters, 1 + len(calibration))
+    return VerticalFit(candidate.effect, setting, f, calibration["offset"], parameters,
+                       1 + len(calibration))
 
 
 @dataclass
@@ -529,7 +531,7 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     # generator's preload and mass records)
     noise = min(locate.noise_floor(y, y - model.prediction, held)
                 for model in [baseline] + [fitted for _, fitted, _ in ranked[:1]])
-    # with the response to the load cell's noise, which the model is driven with as exact
+    # with the response to what noise of the load cell the denoised column still holds
     noise = float(np.hypot(noise, rig.input_noise(baseline.setting) / np.ptp(y[held])))
     significant = significant_gap(gap_base, noise, int(held.sum()))
 
