@@ -102,7 +102,7 @@ def run(fmus: Path, stop: float, explicit: bool, csv_path: Path) -> int:
         rows.append((0.0, y, f_up, h_up))
 
         # -- stabilised Gauss-Seidel: each macro step uses the newest outputs -----------------
-        # The contact is stiff (K_contact ~ 5e9 N/m on 2.9 kg, ~6.6 kHz) and undamped (its
+        # The contact is stiff (K_contact ~ 5.7e9 N/m on 3.3 kg, ~6.6 kHz) and undamped (its
         # `damping` parameter is 0, so C_contact = 0). Holding F_contact constant over a step
         # (explicit coupling: K_contact = C_contact = 0 at the Carriage) feeds energy in every step:
         # a spring-mass split over two FMUs that way is stable only for omega*h < 4*zeta, never

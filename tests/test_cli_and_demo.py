@@ -21,7 +21,7 @@ def test_cli_facts_natural_frequency_near_published_6590_hz(capsys):
     assert cli.main(["facts"]) == 0
     facts = json.loads(capsys.readouterr().out)
     assert abs(facts["natural_frequency_lubricated_Hz"] / 6590.0 - 1) < 0.01
-    assert facts["preload_per_roller_N"] == 115.0
+    assert facts["preload_per_roller_N"] == 460.0  # 9200 N per groove of 20
 
 
 def test_stiffness_curves_through_fmus_match_physics_derivative(fmu_dir):
@@ -44,7 +44,7 @@ def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_p
                      "--stop", "1.5e-3", "--out", str(out), "--no-progress"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["steps"] == 375 and summary["algorithm"] == "stabilised"  # 4 us steps
-    assert summary["parameters"]["Contact"]["preload"] == 9200.0
+    assert summary["parameters"]["Contact"]["preload"] == 36800.0
     assert {"results.csv", "time.png", "spectrum.png", "film.png", "envelope.png"} <= set(summary["files"])
     data = np.genfromtxt(out / "results.csv", delimiter=",", names=True)
     y = data["Carriagey"] - data["Carriagey"].mean()

@@ -15,7 +15,7 @@ from guideway_fmu import scenarios
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
 
 ORCHESTRATION = Path(__file__).resolve().parents[1] / "orchestration"
-PRELOAD_PER_ROLLER = 9200.0 / 80  # N, F0 shared by 4 grooves x 20 rollers
+PRELOAD_PER_ROLLER = 36800.0 / 80  # N, F0 shared by 4 grooves x 20 rollers
 
 
 def _run(script: str, *args, cwd: Path) -> subprocess.CompletedProcess:

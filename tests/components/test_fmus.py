@@ -35,15 +35,15 @@ NAN = float("nan")
 
 # -- hand values -------------------------------------------------------------------------------
 # Default guideway (Soleimanian et al. 2020, Table 2): N = 20 rollers per groove, 4 grooves, theta = 45 deg,
-# preload F0 = 9200 N shared by all 4N rollers, roller length l = 8 mm; Palmgren's deflection of
+# preload F0 = 36800 N shared by all 4N rollers (9200 N per groove), roller length l = 8 mm; Palmgren's deflection of
 # one line contact, delta[mm] = 3.84e-5 Q^0.9 / l[mm]^0.8, two contacts in series per roller.
 ROLLERS = 20
 SIN45 = math.sin(math.radians(45.0))
-Q0 = 9200.0 / (4 * ROLLERS)  # 115 N per roller
+Q0 = 36800.0 / (4 * ROLLERS)  # 460 N per roller
 K_PALMGREN = (1e3 * 8**0.8 / (2 * 3.84e-5)) ** (1 / 0.9)  # N/m^(10/9) of F = k delta^(10/9)
 DELTA0 = (Q0 / K_PALMGREN) ** 0.9  # preload approach of one roller [m]
 GRAVITY = 9.80665
-MASS = 2.9
+MASS = 3.3
 
 
 def hand_dry_loads(y):
@@ -255,8 +255,8 @@ def test_model_description_declares_contract_variables(fmu_dir, name):
 def test_dry_contact_at_zero_displacement_carries_preload_shared_by_all_rollers(open_fmu):
     dry = open_fmu("ContactDryHertz")
     assert dry.get("F_contact") == pytest.approx(0.0, abs=1e-9)
-    assert dry.get("F_upper") == pytest.approx(115.0, rel=1e-12)  # 9200 N / 80 rollers
-    assert dry.get("F_lower") == pytest.approx(115.0, rel=1e-12)
+    assert dry.get("F_upper") == pytest.approx(460.0, rel=1e-12)  # 36800 N / 80 rollers
+    assert dry.get("F_lower") == pytest.approx(460.0, rel=1e-12)
     assert dry.get("h_upper") == 0.0 and dry.get("h_lower") == 0.0
 
 

@@ -12,7 +12,7 @@ import pytest
 from guideway_fmu.physics import carriage
 from guideway_fmu.physics.roller_contact import OpposedRows
 
-BODY = carriage.Carriage()  # M = 2.9 kg, g = 9.80665 m/s^2
+BODY = carriage.Carriage(mass=2.9)  # M = 2.9 kg, g = 9.80665 m/s^2
 K = 4.98e9  # N/m, about the lubricated guideway stiffness at y = 0
 PERIOD = 2 * math.pi * math.sqrt(BODY.mass / K)  # 1.517e-4 s
 F_EXT = 1500.0  # N

@@ -9,7 +9,10 @@ from guideway_fmu.physics import carriage, film
 from guideway_fmu.physics import guideway as gw
 from guideway_fmu.physics.roller_contact import contact_force
 
-GUIDEWAY = gw.Guideway()  # Soleimanian et al. (2020) Table 2, INA RUE45-E
+# Soleimanian et al. (2020) Table 2, INA RUE45-E, with its 9200 N shared by all 80 rollers (the
+# light `carriage` reading, whose rows unload within a few micrometres; the default shares it per
+# groove, test_default_guideway_is_the_groove_reading below)
+GUIDEWAY = gw.Guideway(preload=9200.0)
 SPEED = 0.29  # m/s, feed velocity amplitude of the paper (A_1 = 0.2919)
 # Palmgren k for l = 8 mm (see test_roller_contact.py), Q0 = 9200 / (4 * 20) = 115 N,
 # delta0 = (115 / 5.10388e8)^0.9 = (2.253189e-7)^0.9 = 1.041160e-6 m.
@@ -110,9 +113,16 @@ def test_row_approach_published_formula_eq3_at_45_degrees(y):
 
 def test_natural_frequency_published_number():
     # Soleimanian et al. (2020): f_n = sqrt(K / M) / (2 pi) = 6590 Hz for the unloaded, lubricated guideway.
-    stiffness = gw.quasi_static_stiffness(GUIDEWAY, 0.0, SPEED, lubricated=True)
+    stiffness = gw.quasi_static_stiffness(gw.Guideway(), 0.0, SPEED, lubricated=True)
     f_n = math.sqrt(stiffness / carriage.Carriage().mass) / (2 * math.pi)
     assert f_n == pytest.approx(6590.0, rel=0.01)
+
+
+def test_default_guideway_is_the_groove_reading_hand_calculation():
+    # 9200 N per groove of 20 rollers: Q0 = 460 N, delta0 = (460 / 5.10388e8)^0.9 = 3.62553e-6 m
+    g = gw.Guideway()
+    assert g.preload_per_roller == pytest.approx(460.0, rel=1e-15)
+    assert g.delta0 == pytest.approx(3.62553e-6, rel=1e-5)
 
 
 @pytest.mark.parametrize("lubricated, u", LUBRICATION)

@@ -97,7 +97,7 @@ def test_film_relaxes_to_the_steady_film_at_constant_feed_velocity(fmu_dir, tmp_
     rig = scenario(tmp_path / "film.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {"profile": "constant", "velocity": u}),
         "Contact": ("ContactEHL", {"damping": 2e4}),
-        "Carriage": ("VerticalDynamics", {"load_static": 5000.0}),
+        "Carriage": ("VerticalDynamics", {"load_static": 20000.0}),
     }, [("Feed.u", "Contact.u"), *RIG_WIRING], stop=5e-3, step=1e-5)
     ref = monolithic.simulate(rig)
     _, _, h_upper, h_lower = guideway.quasi_static_state(guideway.Guideway(), ref.columns["Carriage.y"], u)

@@ -9,7 +9,8 @@ not say over what it is shared. Three readings, each a parameter set of the ship
 * ``carriage``: 9200 N over the carriage's 80 rollers, Q0 = 115 N (V3 is 10 % of the
   carriage's dynamic load rating in the maker's catalogue);
 * ``side``: 9200 N per pair of grooves on one side, Q0 = 230 N;
-* ``groove``: 9200 N per groove, Q0 = 460 N.
+* ``groove``: 9200 N per groove, Q0 = 460 N: the FMUs' default (Guideway.preload = 36800 N,
+  Carriage.mass = 3.3 kg), the reading that reproduces the most of the paper's statements.
 
 The paper gives no mass of the moving rail; each reading's mass is the one that puts the
 linearised unloaded natural frequency (lubricated, at the rig's feed speed amplitude) at the

@@ -12,7 +12,9 @@ the paper's results are reproduced exactly there and the consistent form is used
 The film adds to the approach: delta_U = delta0 + y sin(theta) + h_U, delta_L = delta0 - y sin(theta) + h_L.
 
 Preload. The preload force F0 is taken as shared equally by all 4 N rollers, Q0 = F0 / (4 N), so
-delta0 is the approach at which one roller carries Q0 (our reading: the paper does not say).
+delta0 is the approach at which one roller carries Q0. The paper's Table 2 gives 9200 N without
+saying over what it is shared; the default F0 = 36800 N reads it per groove (Q0 = 460 N), the
+reading that reproduces the most of the paper's stated results (analysis/soleimanian2020.py).
 
 Quasi-static stiffness, derived here because the published eqs. 8, 10 and 12 print 10/(9k) where
 (10/9) k belongs. With the steady film h(F) = C F^-m of :mod:`film`,
@@ -42,7 +44,7 @@ class Guideway:
 
     rollers_per_groove: int = 20
     contact_angle: float = np.pi / 4  # rad, from the horizontal
-    preload: float = 9200.0  # N, F0
+    preload: float = 36800.0  # N, F0 over all 4 N rollers: the paper's 9200 N per groove
     contact: LineContact = field(default_factory=LineContact)  # roller and lubricant
     stiffness: float = 0.0  # N/m^(10/9), k per roller; 0 selects Palmgren's formula
 
