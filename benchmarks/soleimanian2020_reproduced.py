@@ -40,7 +40,8 @@ LOAD_CASES = {6000: (2500, 3000, 4500, 5000, 9000), 9000: (2500, 3000, 4500, 500
               12000: (2500, 3000, 4000, 4500, 9000, 9500)}
 DRY = (2500, 4500)
 SKIP = 0.01  # s of the start left out of spectra, envelopes and statistics
-KEEP = ("Carriage.y", "Contact.F_upper", "Contact.F_lower", "Contact.h_upper", "Feed.u")
+KEEP = ("Carriage.y", "Contact.F_upper", "Contact.F_lower", "Contact.h_upper", "Feed.u",
+        "Friction.F_friction")  # the friction where the scenario has it (the unloaded rig)
 
 
 #: Why a statement disagrees where it does (measured in the table; a cause not yet checked by a
@@ -87,7 +88,8 @@ def one_run(job) -> tuple:
     reading, name, fmus = job
     s = system.load(scenarios.find(name), fmus).with_changes(parameters=reading.parameters())
     rec = master.simulate(s).recording
-    return reading.name, name, {"time": rec.time, **{c: rec.columns[c] for c in KEEP}}
+    return reading.name, name, {"time": rec.time,
+                                **{c: rec.columns[c] for c in KEEP if c in rec.columns}}
 
 
 def steady(run) -> dict:
@@ -212,6 +214,42 @@ def statements(readings, runs, solutions: dict) -> list[dict]:
     add("S26", "Fig. 23", "6000 N: the feed frequency (5 Hz) makes the largest contribution to "
         "the film's variation", {k: f"{100 * v:.0f} % below 100 Hz" for k, v in share.items()},
         {k: v > 0.5 for k, v in share.items()}, "share of the film's variance below 100 Hz")
+    # S33, S36: with the load, the film's variation at the excitation and natural frequencies
+    # gains weight and the feed's loses it (Figs. 23, 26, 29)
+    weight = {}
+    for r in readings:
+        for amplitude, freqs in LOAD_CASES.items():
+            cases = [run(r, f"soleimanian2020_{amplitude}N_{f}Hz") for f in freqs]
+            film_means = np.array([np.mean(c["Contact.h_upper"]) for c in cases])
+            load_peaks = np.array([np.max(c["Contact.F_upper"]) for c in cases])
+            weight[r.name, amplitude] = (
+                float(np.mean([paper.band_share(c["time"], c["Contact.h_upper"], 1000.0, 2e4)
+                               for c in cases])),
+                float(np.mean([paper.band_share(c["time"], c["Contact.h_upper"], 0.0, 100.0)
+                               for c in cases])),
+                float(np.ptp(film_means) / np.mean(film_means)),
+                float(np.ptp(load_peaks) / np.mean(load_peaks)))
+    add("S33", "Fig. 26", "9000 N: the film's overall range stays insensitive to the load change; "
+        "its variation at the natural frequency gains significance (against 6000 N)",
+        {r.name: f"film {100 * weight[r.name, 9000][2]:.1f} %, load "
+                 f"{100 * weight[r.name, 9000][3]:.0f} %; above 1 kHz "
+                 f"{100 * weight[r.name, 6000][0]:.2g} % -> {100 * weight[r.name, 9000][0]:.2g} %"
+         for r in readings},
+        {r.name: weight[r.name, 9000][2] < 0.25 * weight[r.name, 9000][3]
+         and weight[r.name, 9000][0] > weight[r.name, 6000][0] for r in readings},
+        "spread of the mean film against that of the peak load over the frequencies (as S24); "
+        "share of the film's variance above 1 kHz (excitation and natural frequency), mean over "
+        "each load's frequencies")
+    add("S36", "Fig. 29", "12000 N: the natural frequency's effect on the film grows further and "
+        "the feed's shrinks (against 9000 N)",
+        {r.name: f"above 1 kHz {100 * weight[r.name, 9000][0]:.2g} % -> "
+                 f"{100 * weight[r.name, 12000][0]:.2g} %; below 100 Hz "
+                 f"{100 * weight[r.name, 9000][1]:.3g} % -> {100 * weight[r.name, 12000][1]:.3g} %"
+         for r in readings},
+        {r.name: weight[r.name, 12000][0] > weight[r.name, 9000][0]
+         and weight[r.name, 12000][1] < weight[r.name, 9000][1] for r in readings},
+        "shares of the film's variance above 1 kHz and below 100 Hz, mean over each load's "
+        "frequencies")
     # S21: 9000 N / 3000 Hz, the 5 Hz effect more pronounced than the natural frequency in y
     lines = {}
     for r in readings:
@@ -269,9 +307,9 @@ def statements(readings, runs, solutions: dict) -> list[dict]:
 
 def figures(readings, runs, solutions, out: Path) -> list[str]:
     """Envelopes against frequency (Figs. 22, 25, 28), dry against lubricated (Figs. 30-31),
-    the upper films at 6000 N (Fig. 23), the displacement's spectra (Figs. 14, 19b) and the
-    explicit EHL pressures and films (``solutions``: "unloaded" and "loaded" by reading; Figs. 33,
-    35), per reading; returns the markdown image lines."""
+    the upper films (Figs. 23, 26, 29), the friction (Figs. 11-13), the displacement's spectra
+    (Figs. 14, 19b) and the explicit EHL pressures and films (``solutions``: "unloaded" and
+    "loaded" by reading; Figs. 33, 35), per reading; returns the markdown image lines."""
     out.mkdir(parents=True, exist_ok=True)
     lines = []
     fig, axes = plt.subplots(1, len(readings), figsize=(5 * len(readings), 3.8), sharey=True)
@@ -307,20 +345,46 @@ def figures(readings, runs, solutions, out: Path) -> list[str]:
     plt.close(fig)
     lines.append("![Upper roller load, dry against lubricated, four load cycles (cf. Figs. 30-31)]"
                  "(figures/soleimanian2020_dry_vs_lubricated.png)")
-    fig, axes = plt.subplots(1, len(readings), figsize=(5 * len(readings), 3.8))
-    for ax, r in zip(np.atleast_1d(axes), readings):
-        for f in LOAD_CASES[6000]:
-            c = runs[r.name, f"soleimanian2020_6000N_{f}Hz"]
-            ax.plot(c["time"][::25], 1e9 * c["Contact.h_upper"][::25], lw=0.8, label=f"{f} Hz")
-        ax.set(title=f"6000 N, reading '{r.name}'", xlabel="time [s]",
-               ylabel="upper roller film [nm]")
-        ax.grid(alpha=0.3)
-    np.atleast_1d(axes)[0].legend(fontsize=8)
+    fig, axes = plt.subplots(len(LOAD_CASES), len(readings),
+                             figsize=(5 * len(readings), 3.3 * len(LOAD_CASES)), squeeze=False)
+    for row, (amplitude, freqs) in enumerate(LOAD_CASES.items()):
+        for ax, r in zip(axes[row], readings):
+            for f in freqs:
+                c = runs[r.name, f"soleimanian2020_{amplitude}N_{f}Hz"]
+                ax.plot(c["time"][::25], 1e9 * c["Contact.h_upper"][::25], lw=0.8,
+                        label=f"{f} Hz")
+            ax.set(title=f"{amplitude} N, reading '{r.name}'", xlabel="time [s]",
+                   ylabel="upper roller film [nm]")
+            ax.grid(alpha=0.3)
+        axes[row][0].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(out / "soleimanian2020_films_6000N.png", dpi=110)
+    fig.savefig(out / "soleimanian2020_films.png", dpi=110)
     plt.close(fig)
-    lines.append("![Upper roller film over the feed cycle at 6000 N (cf. Fig. 23)]"
-                 "(figures/soleimanian2020_films_6000N.png)")
+    lines.append("![Upper roller film over the feed cycle at 6000, 9000 and 12000 N (cf. Figs. "
+                 "23, 26, 29)](figures/soleimanian2020_films.png)")
+    fig, axes = plt.subplots(1, 3, figsize=(15, 3.8))
+    t = np.linspace(0.0, 0.2, 2001)
+    u, mu = paper.hess_soom_friction(t)
+    axes[0].plot(u, mu)
+    axes[0].set(title="one roller, 250 N, Table 1 surface (cf. Fig. 11)",
+                xlabel="sliding velocity [m/s]", ylabel="friction coefficient [-]")
+    for r in readings:
+        c = runs[r.name, "soleimanian2020_unloaded"]
+        axes[1].plot(c["time"], c["Friction.F_friction"], lw=0.8, label=f"'{r.name}'")
+        axes[2].plot(c["Feed.u"], c["Friction.F_friction"], lw=0.8, label=f"'{r.name}'")
+    axes[1].set(title="unloaded rig (cf. Fig. 12)", xlabel="time [s]",
+                ylabel="friction force on the rail [N]")
+    axes[2].set(title="unloaded rig (cf. Fig. 13)", xlabel="feed velocity [m/s]",
+                ylabel="friction force on the rail [N]")
+    axes[1].legend(fontsize=8)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out / "soleimanian2020_friction.png", dpi=110)
+    plt.close(fig)
+    lines.append("![Mixed-EHL friction: the Hess and Soom test and the unloaded rig's friction "
+                 "against time and feed velocity (cf. Figs. 11-13)]"
+                 "(figures/soleimanian2020_friction.png)")
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
     for ax, name, title in ((axes[0], "soleimanian2020_unloaded", "unloaded (cf. Fig. 14)"),
                             (axes[1], "soleimanian2020_9000N_3000Hz", "9000 N, 3000 Hz (cf. Fig. 19b)")):
@@ -418,8 +482,9 @@ def main(argv=None) -> None:
         if against:
             lines.append(f"- **{row['id']}** (disagrees under {', '.join(against)}): "
                          f"{CAUSES.get(row['id'], 'no cause stated yet')}")
-    lines += ["", "Not compared: the friction curves of Figs. 11-13 (Hess and Soom's and the "
-              "authors' measurements exist only as figures); the EHL solver against Masjedi and "
+    lines += ["", "Plotted, not compared: the friction of Figs. 11-13 (the paper sets its model "
+              "beside Hess and Soom's and its own measurements, which exist only as figures; "
+              "ours are in the last figure). Not compared: the EHL solver against Masjedi and "
               "Khonsari (Figs. 9-10: docs/ehl-validation.md); the odd harmonics of the rig's "
               "measured response (Fig. 8: a measurement).", "", "## Figures", ""]
     lines += figures(readings, runs, solutions, out.parent / "figures")

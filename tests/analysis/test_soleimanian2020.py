@@ -60,3 +60,13 @@ def test_a_reading_is_a_parameter_set_of_the_shipped_scenarios(fmu_dir):
     assert s.components["Carriage"].parameters["mass"] == pytest.approx(groove.mass)
     with pytest.raises(system.ScenarioError, match="no component 'Rail'"):
         s.with_changes(parameters={"Rail": {"mass": 1.0}})
+
+
+def test_hess_soom_test_follows_eq33_and_falls_along_stribecks_mixed_branch():
+    # eq. 33 with Table 1: u = 0.2375 - 0.25 sin(2 pi 5 t): 0.2375 at t = 0, -0.0125 at 50 ms
+    u, mu = paper.hess_soom_friction(np.array([0.0, 0.05]))
+    assert u == pytest.approx([0.2375, -0.0125], abs=1e-12)
+    # the film grows as |u|^0.647 and carries more of the 250 N: the coefficient falls with
+    # the speed over the cycle's positive half (the mixed branch of a Stribeck curve)
+    u, mu = paper.hess_soom_friction(np.linspace(0.1, 0.15, 201))  # u rises from 0.2375 to 0.4875
+    assert np.all(np.diff(u) > 0) and np.all(np.diff(mu) < 0)

@@ -24,14 +24,21 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..cosim.plots import spectrum
-from ..physics import guideway
-from ..physics.film import film_law
+from ..physics import greenwood_tripp, guideway, roller_friction
+from ..physics.feed_profiles import Oscillating
+from ..physics.film import LineContact, film_law, steady_film
 from ..physics.roller_contact import approach_for_load
 
 PRELOAD = 9200.0  # N, Table 2
 PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, the unloaded rig
 RIG_SPEED = 0.29  # m/s, amplitude of the rig's bi-harmonic feed (eq. 1a, A1 = 0.2919)
 SHARES = {"carriage": 1, "side": 2, "groove": 4}  # the 9200 N over 4 / n of the grooves
+HESS_SOOM_LOAD = 250.0  # N, the load of Hess and Soom's test in Fig. 11
+# Table 1: the surface and lubricant of the Hess and Soom comparison (Fig. 11)
+HESS_SOOM = roller_friction.MixedFrictionParams(
+    surface=greenwood_tripp.Surface(asperity_density=7e9, asperity_radius=10e-6,
+                                    roughness=0.45e-6, e_reduced=2e11),
+    limiting_shear_stress=3.5e6, limiting_shear_slope=0.047)
 
 
 @dataclass(frozen=True)
@@ -101,3 +108,18 @@ def spectrum_peak(time, values, low: float, high: float) -> tuple[float, float]:
     inside = np.flatnonzero((f >= low) & (f <= high))
     best = inside[np.argmax(amplitude[inside])]
     return float(f[best]), float(amplitude[best])
+
+
+def hess_soom_friction(time):
+    """(sliding velocity u [m/s], friction coefficient [-]) of one roller in the test the paper
+    sets beside Hess and Soom's measurement (Fig. 11) at the times ``time`` [s].
+
+    Load 250 N; u of eq. 33 with Table 1's mean 0.2375 m/s, amplitude 0.25 m/s and 5 Hz; Table
+    1's surface and limiting shear (HESS_SOOM); Table 3's viscosity and Table 2's roller (the
+    paper gives no other geometry); the steady film of eq. 4 at each instant, whose relaxation
+    time 99 h_s / |u| (under a millisecond) is short against the 200 ms cycle.
+    """
+    _, u, _ = Oscillating().evaluate(np.asarray(time, dtype=float))
+    film = steady_film(LineContact(), HESS_SOOM_LOAD, u)
+    boundary, viscous = roller_friction.contact_friction(HESS_SOOM_LOAD, film, u, HESS_SOOM)
+    return u, (boundary + viscous) / HESS_SOOM_LOAD
