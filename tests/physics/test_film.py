@@ -70,11 +70,27 @@ def test_film_exponents_log_log_numerical_derivative(contact, speed_exponent, lo
         load_exponent, rel=1e-8)
 
 
-def test_film_limiting_case_load_floor_freezes_film_at_tiny_loads():
-    floor = EXTRAPOLATED.load_floor()  # 1e-7 E' R l = 1e-7 * 4e6 = 0.4 N
-    assert floor == pytest.approx(0.4, rel=1e-12)
-    films = film.steady_film(EXTRAPOLATED, [0.0, 0.1, floor], SPEED)
-    assert np.all(np.isfinite(films)) and np.all(films == films[-1])
+def test_film_limiting_case_unloaded_roller_steady_film_is_infinite_and_none_without_motion():
+    # h = C F^-m: no floor, the law's own limit; no entrainment (u = 0): no film
+    films = film.steady_film(EXTRAPOLATED, [0.0, -1.0, 1e-30, LOAD], SPEED)
+    assert np.isinf(films[0]) and np.isinf(films[1])
+    assert films[2] == pytest.approx(films[3] * (LOAD / 1e-30) ** 0.045, rel=1e-9)
+    assert np.array_equal(film.steady_film(EXTRAPOLATED, [0.0, LOAD], 0.0), [0.0, 0.0])
+
+
+@pytest.mark.parametrize("load", [0.0, 1e-300, 1e-100])
+def test_unloaded_roller_film_grows_at_the_squeeze_relations_limit_hand_value(load):
+    # h / h_s -> 0: 0.75 exp(132 h_dot / u) -> 1, h_dot = |u| ln(4/3) / 132, clipped at
+    # S_MAX = ln(0.99 / 0.75): 0.29 m/s * 0.27763 / 132 = 6.0996e-4 m/s. A roller under
+    # 1e-100 N (h F^m / C = 3e-5 of the ratio at 1 N) is within 1e-3 of it.
+    from guideway_fmu.physics.guideway import Guideway, RowKernel
+    kernel = RowKernel(Guideway())
+    limit = SPEED * math.log(0.99 / 0.75) / 132.0
+    assert limit == pytest.approx(6.0996e-4, rel=1e-4)
+    h = float(film.steady_film(EXTRAPOLATED, 100.0, SPEED))  # a loaded film, then unloaded
+    rate = kernel.film_rate(h, load, SPEED)
+    assert rate == pytest.approx(limit, rel=1e-3 if load else 1e-12)
+    assert rate <= limit * (1 + 1e-12)
 
 
 def test_unsqueezed_film_refuses_pan_hamrock():

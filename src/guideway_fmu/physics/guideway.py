@@ -100,37 +100,40 @@ def frozen_film_stiffness(g: Guideway, y, h_upper=0.0, h_lower=0.0):
     return 2 * n * s * s * (contact_stiffness(du, g.k) + contact_stiffness(dl, g.k))
 
 
-def _solve_loaded_approach(g: Guideway, delta_geom, c, m, rtol=1e-13, max_iter=60):
-    """Total approach z [m] solving z = delta_geom + C (k z^(10/9))^-m, loads floored (film doc).
+def _solve_steady_load(g: Guideway, delta_geom, c, m, rtol=1e-12, max_iter=200):
+    """Roller load F [N] > 0 of the steady lubricated contact: z(F) = delta_geom + C F^-m with
+    z(F) = (F / k)^(9/10) the elastic approach, vectorised.
 
-    A safeguarded Newton iteration on the bracket [max(delta_geom, 0), delta_geom + h_max],
-    vectorised, converged when each residual is below ``rtol`` of its bracket scale. A row with
-    delta_geom + h_max <= 0 has lost contact: z = 0. (scipy's elementwise bracketing solver does
-    the same at about 3 ms a call, too slow for a contact FMU evaluated every macro step.)
+    The difference of both sides rises monotonically from -inf (F -> 0: the law's film
+    diverges) to +inf, so every row has one solution: a row whose geometry has parted
+    (delta_geom < 0) carries the load whose steady film closes the gap, vanishingly small
+    (about 1e-16 N for a gap of five films). Solved for q = ln F by Newton steps safeguarded by
+    bisection within a bracket widened by e^8 until it holds the root, converged when each
+    residual is below ``rtol`` of its scale |delta_geom| + C F^-m. (scipy's elementwise
+    bracketing solver does the same at about 3 ms a call, too slow for a contact FMU.)
     """
     d = np.asarray(delta_geom, dtype=float)
     c = np.broadcast_to(np.asarray(c, dtype=float), d.shape)
-    floor = g.contact.load_floor()
-    h_max = c * floor ** (-m)
-    loaded = d + h_max > 0.0
-    lo = np.where(loaded, np.maximum(d, 0.0), 0.0)
-    hi = np.where(loaded, d + h_max, 0.0)
-    tol = rtol * (np.abs(d) + h_max)
-    z = hi.copy()
+
+    def residual(q):
+        z, h = (np.exp(q) / g.k) ** (1.0 / EXPONENT), c * np.exp(-m * q)
+        return z - d - h, z / EXPONENT + m * h, np.abs(d) + h
+
+    dry = c == 0.0  # no entrainment (u = 0): no film
+    c = np.where(dry, 1.0, c)
+    q = np.log(contact_force(np.maximum(d, 0.0) + c, g.k))  # the gap's load, a film added
+    lo, hi = q - 8.0, q + 8.0
+    while np.any(below := residual(lo)[0] > 0.0):
+        lo = np.where(below, lo - 8.0, lo)
+    while np.any(above := residual(hi)[0] < 0.0):
+        hi = np.where(above, hi + 8.0, hi)
     for _ in range(max_iter):
-        load = contact_force(z, g.k)
-        f = np.maximum(load, floor)
-        h = c * f ** (-m)
-        val = z - h - d
-        done = ~loaded | (np.abs(val) <= tol)
-        if np.all(done):
-            return np.where(loaded, z, 0.0)
-        lo = np.where(val < 0.0, z, lo)
-        hi = np.where(val > 0.0, z, hi)
-        slope = 1.0 + np.where(load > floor, m * h / f * contact_stiffness(z, g.k), 0.0)
-        step = z - val / slope
-        inside = (step >= lo) & (step <= hi)
-        z = np.where(done, z, np.where(inside, step, 0.5 * (lo + hi)))
+        val, slope, scale = residual(q)
+        if np.all(np.abs(val) <= rtol * scale):
+            return np.where(dry, contact_force(d, g.k), np.exp(q))
+        lo, hi = np.where(val < 0.0, q, lo), np.where(val > 0.0, q, hi)
+        step = q - val / slope
+        q = np.where((step > lo) & (step < hi), step, 0.5 * (lo + hi))
     raise RuntimeError("quasi-static film/load equilibrium did not converge")
 
 
@@ -138,17 +141,16 @@ def quasi_static_state(g: Guideway, y, u=0.0, lubricated: bool = True):
     """Steady state of the rows at displacement y [m] and feed velocity u [m/s], squeeze neglected.
 
     Returns (F_U, F_L, h_U, h_L): roller loads [N] and films [m], solving each roller's load
-    and film together (the film thins as the load grows). A row that has lost contact carries
-    the film of a vanishing load (the load floor of :mod:`film`). ``lubricated=False`` is the
-    dry contact.
+    and film together (the film thins as the load grows). A row whose geometry has parted keeps a
+    vanishing load under the film that closes the gap (:func:`_solve_steady_load`).
+    ``lubricated=False`` is the dry contact.
     """
     du, dl = g._geometric_approach(y)
     if not lubricated:
         return (contact_force(du, g.k), contact_force(dl, g.k), np.zeros_like(du), np.zeros_like(dl))
     c, m = film_law(g.contact, u)
     geom = np.stack(np.broadcast_arrays(du, dl))
-    z = _solve_loaded_approach(g, geom, np.broadcast_to(c, geom.shape), m)
-    f = contact_force(z, g.k)
+    f = _solve_steady_load(g, geom, np.broadcast_to(c, geom.shape), m)
     h = steady_film(g.contact, f, u)
     return f[0], f[1], h[0], h[1]
 
@@ -160,12 +162,12 @@ def quasi_static_stiffness(g: Guideway, y, u=0.0, lubricated: bool = True, state
     """
     fu, fl, hu, hl = quasi_static_state(g, y, u, lubricated) if state is None else state
     _, m = film_law(g.contact, u)
-    s, floor = np.sin(g.contact_angle), g.contact.load_floor()
+    s = np.sin(g.contact_angle)
 
-    def row_gain(load, h, delta_geom):
+    def row_gain(load, h, delta_geom):  # dh/dF = -m h / F; no film (u = 0): the dry k'
         kp = contact_stiffness(delta_geom + h, g.k)
-        dh_df = np.where(load > floor, -m * h / np.maximum(load, floor), 0.0)
-        return kp / (1.0 - kp * dh_df)
+        softening = np.divide(m * h, load, out=np.zeros_like(h), where=h > 0.0)
+        return kp / (1.0 + kp * softening)
 
     du, dl = g._geometric_approach(y)
     return 2 * g.rollers_per_groove * s * s * (row_gain(fu, hu, du) + row_gain(fl, hl, dl))
@@ -212,7 +214,6 @@ class RowKernel:
         self.sin = math.sin(g.contact_angle)
         self.gain = 2 * g.rollers_per_groove * self.sin  # net force per unit load difference
         self.force_1um = self.gain * self.k * MICRON ** EXPONENT  # N, net force at 1 um approach
-        self.floor = g.contact.load_floor()
         c1, self.m = film_law(g.contact, 1.0)
         self.speed_exponent = speed_exponent(g.contact)
         # unsqueezed film h_s = coeff |u|^p F^-m (extrapolated law); steady film h_s * 0.25
@@ -244,11 +245,13 @@ class RowKernel:
                            self.delta0 + h_upper, self.delta0 + h_lower, rate_upper, rate_lower)
 
     def film_rate(self, h: float, load: float, speed: float) -> float:
-        """dh/dt [m/s] of one row's extrapolated film h [m] under load [N] at |u| = speed [m/s]."""
+        """dh/dt [m/s] of one row's extrapolated film h [m] under load [N] at |u| = speed [m/s]
+        (h / h_s = h F^m / C(u), 0 for an unloaded roller: :mod:`film`)."""
         if speed == 0.0:
             return 0.0
-        hs = self.hs_coeff * speed ** self.speed_exponent * max(load, self.floor) ** -self.m
-        arg = (1.0 - h / hs) / SQUEEZE_WEIGHT
+        ratio = (h * load ** self.m / (self.hs_coeff * speed ** self.speed_exponent)
+                 if load > 0.0 else 0.0)
+        arg = (1.0 - ratio) / SQUEEZE_WEIGHT
         s = math.log(arg) if arg > 0.0 else S_MIN
         return speed * min(max(s, S_MIN), S_MAX) / SQUEEZE_GAIN
 

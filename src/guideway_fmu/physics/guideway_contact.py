@@ -30,6 +30,9 @@ OUTPUTS = ("F_contact", "F_upper", "F_lower", "h_upper", "h_lower", "K_contact",
            "law_approach_lower", "law_rate_upper", "law_rate_lower")
 FILM_SUBSTEP = 13.2  # largest Heun substep of the film integration, in units of h / |u|
 FILM_FLOOR = 1e-9  # m, films below this size the substeps as if they were this thick
+#: Heun substeps of a step in which a roller lifts off or lands: its film rate has a cusp there
+#: (h / h_s = h F^m / C(u), m = 0.045, rises from 0 with infinite slope: physics/film.py)
+TOUCHDOWN_SUBSTEPS = 16
 
 
 def linear_path(y: float, y_dot: float):
@@ -99,6 +102,9 @@ class RollerContact(ContinuousModel):
         rates = self.kernel.film_rates
         hu, hl = films
         n = max(1, math.ceil(h * abs(u) / (FILM_SUBSTEP * max(min(hu, hl), FILM_FLOOR))))
+        start, end = self.kernel.loads(path(0.0), hu, hl), self.kernel.loads(path(h), hu, hl)
+        if any((a > 0.0) != (b > 0.0) for a, b in zip(start, end)):
+            n = max(n, TOUCHDOWN_SUBSTEPS)  # a roller lifts off or lands: the rate's cusp
         dt = h / n
         for i in range(n):
             ru, rl = rates(path(i * dt), hu, hl, u)
