@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from guideway_fmu.analysis import soleimanian2020 as paper
 from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import algorithms, master, observers, system
 from guideway_fmu.cosim.fmu_instance import FmuInstance
@@ -227,15 +228,17 @@ def test_convergence_stabilised_error_falls_with_the_step(tmp_path, fmu_dir):
     assert 2.5 < err[4e-6] / err[2e-6] < 6.0
 
 
-def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_4x(fmu_dir):
-    # Soleimanian et al. (2020), 9000 N at 2500 Hz (the rows lift off every cycle), 10 ms at the
-    # scenario's 2 us, against the monolithic SciPy reference (itself within 2e-8 of a run at
-    # rtol 1e-12): the stabilised coupling with the contact's force law (tangent `model`, films
-    # interpolated over the body's step) against the linear tangent alone. Measured: 1.07e-4
-    # against 4.7e-4 of the F_upper range; what is left is the film rate's cusp where a roller
-    # lands (physics/film.py), and falls with the step (3.8e-5 at 0.5 us).
+def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_2_5x(fmu_dir):
+    # Soleimanian et al. (2020), 9000 N at 2500 Hz under the light reading (the rows lift off
+    # every cycle), 10 ms at the scenario's 2 us, against the monolithic SciPy reference: the
+    # stabilised coupling with the contact's force law (tangent `model`, films interpolated over
+    # the body's step) against the linear tangent alone. Measured: 2.6e-4 against 7.7e-4 of the
+    # F_upper range (1.1e-4 against 4.7e-4 with 2.9 kg instead of the reading's 2.903 kg: lift-off
+    # makes the cycle sensitive); what is left is the film rate's cusp where a roller lands
+    # (physics/film.py), and falls with the step (1.5e-4 at 1 us).
     path = scenarios.find("soleimanian2020_9000N_2500Hz")
-    with_law = system.load(path, fmu_dir).with_changes(stop=0.01)
+    light = paper.readings()[0]  # 9200 N over all 80 rollers: the rows lift off every cycle
+    with_law = system.load(path, fmu_dir).with_changes(stop=0.01, parameters=light.parameters())
     tangent_only = dataclasses.replace(with_law, tangents=tuple(
         dataclasses.replace(t, model=(), settings=()) for t in with_law.tangents))
     errors = {}
@@ -243,8 +246,8 @@ def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_4x(
         rec = master.simulate(s).recording
         ref = monolithic.simulate(s, times=rec.time).columns["Contact.F_upper"]
         errors[name] = np.sqrt(np.mean((rec.columns["Contact.F_upper"] - ref) ** 2)) / np.ptp(ref)
-    assert errors["law"] < 1.5e-4
-    assert errors["law"] < errors["tangent"] / 3
+    assert errors["law"] < 4e-4
+    assert errors["law"] < errors["tangent"] / 2.5
 
 
 @pytest.mark.parametrize("algorithm, interpolating", [("stabilised", True), ("jacobi", False)])

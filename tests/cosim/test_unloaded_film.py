@@ -6,17 +6,23 @@ import numpy as np
 import pytest
 
 from guideway_fmu import scenarios
+from guideway_fmu.analysis import soleimanian2020 as paper
 from guideway_fmu.cosim import master, system
 from guideway_fmu.physics.guideway import RowKernel
 from guideway_fmu.reference import monolithic
 
-CASE = "soleimanian2020_9000N_4500Hz"  # the rows lift off every load cycle
+# the rows lift off every load cycle under the light reading of the preload (9200 N over all 80
+# rollers); the default reading lifts them only near resonance, after the first milliseconds
+CASE = "soleimanian2020_9000N_4500Hz"
 STOP = 2e-3  # s, nine load cycles
 
 
 @pytest.fixture(scope="module")
 def lifting(fmu_dir):
-    return system.load(scenarios.find(CASE), fmu_dir).with_changes(stop=STOP)
+    light = paper.readings()[0]
+    assert light.name == "carriage"
+    return system.load(scenarios.find(CASE), fmu_dir).with_changes(
+        stop=STOP, parameters=light.parameters())
 
 
 def _upper_load(s, monkeypatch=None, floor=None):
