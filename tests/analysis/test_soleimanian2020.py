@@ -19,16 +19,17 @@ def test_readings_share_9200_n_over_80_40_and_20_rollers_hand_values():
 
 @pytest.mark.parametrize("reading", paper.readings(), ids=lambda r: r.name)
 def test_each_readings_mass_gives_the_published_natural_frequency(reading):
+    # to the gram: a gram in 3 kg moves the frequency by 1.5e-4 of it
     assert paper.natural_frequency(reading.guideway(), reading.mass) == pytest.approx(6590.0,
-                                                                                     rel=1e-9)
+                                                                                     rel=1e-4)
     assert reading.guideway().preload_per_roller == pytest.approx(reading.preload_per_roller)
 
 
-def test_the_groove_reading_is_the_fmus_default_mass_within_a_tenth_of_a_percent():
+def test_the_groove_reading_is_the_fmus_default():
     # the default reading is the one that reproduces the most statements (docs/physics.md)
     groove = paper.readings()[2]
     assert guideway.Guideway().preload == groove.preload
-    assert carriage.Carriage().mass == pytest.approx(groove.mass, rel=1e-3)
+    assert carriage.Carriage().mass == groove.mass
 
 
 def test_film_to_solid_stiffness_is_the_numerical_derivative_ratio():

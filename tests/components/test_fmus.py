@@ -43,7 +43,7 @@ Q0 = 36800.0 / (4 * ROLLERS)  # 460 N per roller
 K_PALMGREN = (1e3 * 8**0.8 / (2 * 3.84e-5)) ** (1 / 0.9)  # N/m^(10/9) of F = k delta^(10/9)
 DELTA0 = (Q0 / K_PALMGREN) ** 0.9  # preload approach of one roller [m]
 GRAVITY = 9.80665
-MASS = 3.3
+MASS = 3.302
 
 
 def hand_dry_loads(y):

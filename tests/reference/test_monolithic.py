@@ -79,7 +79,7 @@ def test_tighter_tolerance_changes_the_loaded_rig_little(fmu_dir, tmp_path):
         "Friction": ("FrictionMixedEHL", {}),
     }, [("Feed.u", "Contact.u"), *RIG_WIRING, *FRICTION_WIRING], stop=2e-3, step=2e-6)
     coarse, fine = (monolithic.simulate(rig, rtol=rtol) for rtol in (1e-8, 1e-10))
-    assert (fine.method, fine.rtol, coarse.rtol) == ("LSODA", 1e-10, 1e-8)
+    assert (fine.method, fine.rtol, coarse.rtol) == ("RK45", 1e-10, 1e-8)  # the film rate is not smooth
     assert fine.nfev > coarse.nfev > 0 and fine.wall_time > 0.0
     assert set(fine.columns) == {f"{inst}.{v.name}" for inst, variables in rig.variables.items()
                                  for v in variables.values() if v.causality == "output"}

@@ -10,11 +10,11 @@ not say over what it is shared. Three readings, each a parameter set of the ship
   carriage's dynamic load rating in the maker's catalogue);
 * ``side``: 9200 N per pair of grooves on one side, Q0 = 230 N;
 * ``groove``: 9200 N per groove, Q0 = 460 N: the FMUs' default (Guideway.preload = 36800 N,
-  Carriage.mass = 3.3 kg), the reading that reproduces the most of the paper's statements.
+  Carriage.mass = 3.302 kg), the reading that reproduces the most of the paper's statements.
 
-The paper gives no mass of the moving rail; each reading's mass is the one that puts the
-linearised unloaded natural frequency (lubricated, at the rig's feed speed amplitude) at the
-published 6590 Hz, so that statement cannot tell the readings apart.
+The paper gives no mass of the moving rail; each reading's mass is the one, to the gram, that
+puts the linearised unloaded natural frequency (lubricated, at the rig's feed speed amplitude)
+at the published 6590 Hz, so that statement cannot tell the readings apart.
 """
 from __future__ import annotations
 
@@ -74,10 +74,11 @@ def natural_frequency(g: guideway.Guideway, mass: float) -> float:
 
 
 def readings() -> list[Reading]:
-    """The three readings, the mass of each fitted to the published natural frequency."""
+    """The three readings, the mass of each fitted to the published natural frequency (to the
+    gram: a scenario states it in a few digits)."""
     omega = 2 * math.pi * PAPER_NATURAL_FREQUENCY
     return [Reading(name, PRELOAD * share,
-                    _stiffness(guideway.Guideway(preload=PRELOAD * share)) / omega**2)
+                    round(_stiffness(guideway.Guideway(preload=PRELOAD * share)) / omega**2, 3))
             for name, share in SHARES.items()]
 
 

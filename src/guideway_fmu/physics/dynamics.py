@@ -25,9 +25,10 @@ class ContinuousModel(ABC):
     inputs: tuple[str, ...] = ()
     #: names of the states, in the order of the state vectors
     states: tuple[str, ...] = ()
-    #: False where the derivatives jump with the state (contacts that close and part): an
-    #: implicit integrator's Jacobian fails there, so the reference steps such a model with an
-    #: explicit Runge-Kutta method whose error control places its steps around the jumps
+    #: False where the derivatives jump with the state (contacts that close and part) or
+    #: rise with an infinite slope (the film rate of a roller that lands): an implicit
+    #: integrator's Jacobian fails there, so the reference steps such a model with an explicit
+    #: Runge-Kutta method whose error control places its steps around them
     smooth: bool = True
 
     def state_scales(self) -> tuple[float, ...]:

@@ -59,6 +59,9 @@ class RollerContact(ContinuousModel):
         self.guideway, self.kernel, self.damping = guideway, RowKernel(guideway), damping
         self.film_model = guideway.contact.model if lubricated else "dry"
         self.states = ("h_upper", "h_lower") if self.film_model == "extrapolated" else ()
+        # the film rate rises from a landing roller's zero load as F^0.045 (physics/film.py):
+        # LSODA stalls on it where rollers lift off, an explicit method steps across
+        self.smooth = not self.states
 
     def state_scales(self):
         return (self.guideway.delta0,) * len(self.states)
