@@ -25,8 +25,8 @@ DRY_CASES = (2500, 4500)  # Hz at 9000 N, Figs. 30-31
 # study (docs/accuracy.md gives the accuracy reached and the responses no step can follow).
 STEP = {0: 4e-6, 6000: 4e-6, 9000: 4e-6, 12000: 4e-6,
         (6000, 3000): 1e-6, (6000, 4500): 1e-6, (6000, 9000): 2e-6, (9000, 2500): 2e-6,
-        (9000, 3000): 2e-6, (12000, 2500): 1e-6, (12000, 3000): 1e-6, (12000, 4000): 2e-6,
-        (12000, 4500): 2e-6}
+        (9000, 3000): 2e-6, (9000, 5000): 1e-6, (12000, 2500): 1e-6, (12000, 3000): 1e-6,
+        (12000, 4000): 2e-6, (12000, 4500): 2e-6}
 DRY_STEP = 2e-6  # s, both dry scenarios
 RECORD = ["Feed.u", "Carriage.y", "Carriage.y_dot", "Contact.F_contact", "Contact.F_upper",
           "Contact.F_lower", "Contact.h_upper", "Contact.h_lower", "Contact.K_contact"]
