@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from pythonfmu import DefaultExperiment
 
 from ..physics import ball_carriage as bc
 from ..physics.dynamics import rk4_step
@@ -30,6 +31,9 @@ class BallCarriage5DOF(GuidewaySlave):
     away during a run. Integrated by RK4 substeps (omega_max h <= 0.5 at the state the step
     starts from) with the inputs held over a step. It stands in for VerticalDynamics plus a
     contact FMU when the guide is a ball guide."""
+
+    #: what a host runs without an experiment: the moment-load run of Wu et al. (2012)
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.14, step_size=1e-5)
 
     description = __doc__.splitlines()[0]
     internal_state = ("state", "time")
