@@ -8,7 +8,7 @@ import numpy as np
 from pythonfmu import DefaultExperiment
 
 from ..physics import ball_carriage as bc
-from ..physics.dynamics import rk4_step
+from ..physics.dynamics import rk4_step, substeps
 from .base import GuidewaySlave
 
 #: RK4 substeps keep omega_max h below this (RK4 is stable to 2.8; 0.5 keeps the period error
@@ -91,7 +91,8 @@ class BallCarriage5DOF(GuidewaySlave):
         self._started()
         model, inputs = self.model(), self.model_inputs()
         omega = 2 * math.pi * model.highest_frequency(self.state, inputs["preload"])
-        n = max(1, math.ceil(h * omega / OMEGA_STEP))
+        n = substeps(h, OMEGA_STEP / omega if omega else h,
+                     "the carriage's motion (omega h <= OMEGA_STEP)")
         for k in range(n):
             self.state = rk4_step(model, t + k * h / n, self.state, inputs, h / n)
         self.time = t + h
