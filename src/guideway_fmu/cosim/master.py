@@ -16,7 +16,7 @@ import numpy as np
 from fmpy.fmi1 import FMICallException
 
 from .algorithms import ALGORITHMS, order
-from .fmu_instance import FmuInstance
+from .fmu_instance import FATAL, FmuInstance
 from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording
 from .system import System
@@ -192,6 +192,9 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
             w.started(system, bus)
         _run(exp, algorithm_class(bus, system), bus, watchers, result)
     except FMICallException as exc:
+        if exc.status == FATAL:  # no call into any instance after fmi2Fatal
+            for inst in instances.values():
+                inst.fatal = True
         failing = getattr(exc, "instance", None)
         logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
                          if failing is None or n == failing)
