@@ -89,3 +89,35 @@ def test_an_fmu_that_cannot_be_instantiated_leaves_no_extracted_folder(fmu_dir, 
     with pytest.raises(Exception, match="NoSuchBinary"):  # fmpy names the missing library
         FmuInstance(broken, "B")
     assert list(scratch.iterdir()) == []
+
+
+NAN_SOURCE = '''
+from pythonfmu import Fmi2Causality, Fmi2Slave, Real
+
+
+class NanSource(Fmi2Slave):
+    """x = t until 5 ms, then NaN, with status OK."""
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self.x = 0.0
+        self.register_variable(Real("x", causality=Fmi2Causality.output))
+
+    def do_step(self, current_time, step_size):
+        end = current_time + step_size
+        self.x = end if end < 0.005 - 1e-12 else float("nan")
+        return True
+'''
+
+
+def test_nan_from_a_third_party_fmu_stops_the_run_naming_it(tmp_path, fmu_dir):
+    from guideway_fmu.cosim import master, system
+
+    (tmp_path / "nan_source.py").write_text(NAN_SOURCE)
+    fmu = FmuBuilder.build_FMU(tmp_path / "nan_source.py", dest=tmp_path / "NanSource.fmu")
+    s = (system.Builder("nan").experiment(start=0.0, stop=0.01, step=0.001, algorithm="jacobi")
+         .component("S", fmu).component("Feed", fmu_dir / "FeedKinematics.fmu")
+         .connect("S.x", "Feed.u_cmd").system())
+    with pytest.raises(master.SimulationError,
+                       match=r"FMU instance 'S' failed at t = 0.005 s: output x is nan"):
+        master.simulate(s)
