@@ -637,6 +637,25 @@ def test_bad_parameter_discards_step_naming_it_until_fixed(open_fmu, name, bad, 
     assert all(math.isfinite(v) for v in slave.outputs().values())
 
 
+@pytest.mark.parametrize("name, start, bad, good", [
+    # omega = sqrt(K / m) = sqrt(1e30 / 3.302) = 5.5e14 rad/s: 1e-4 s would take 1.1e12 substeps
+    case("VerticalDynamics", {}, {"K_contact": 1e30}, {"K_contact": 0.0},
+         id="VerticalDynamics-K_contact-huge"),
+    case("VerticalDynamics", {}, {"load_frequency": 1e15}, {"load_frequency": 0.0},
+         id="VerticalDynamics-load_frequency-huge"),
+    # the film's substep 13.2 h / |u| = 13.2 * 2.3e-7 / 1e4 = 3e-10 s: 1e-4 s takes 3.3e5
+    case("ContactEHL", {"u": 0.29}, {"u": 1e4}, {"u": 0.29}, id="ContactEHL-u-huge"),
+])
+def test_work_inside_one_step_is_bounded_hand_values(open_fmu, name, start, bad, good):
+    # more than MAX_SUBSTEPS (1e5) substeps: the step is discarded at once, naming why
+    slave = open_fmu(name, **start).step(1e-4)
+    slave.set(**bad)
+    assert_discarded(slave, 1e-4, "substeps")
+    slave.set(**good)
+    slave.step(1e-4)
+    assert all(math.isfinite(v) for v in slave.outputs().values())
+
+
 def test_vertical_dynamics_resumes_exactly_after_bad_mass_is_fixed(open_fmu):
     body = open_fmu("VerticalDynamics", F_ext=1000.0).step(1e-4, n=5)
     body.set(mass=-1.0)

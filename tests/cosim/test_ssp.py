@@ -9,6 +9,7 @@ keeps the default feed profile (biharmonic, with phases 0).
 """
 import dataclasses
 import shutil
+from pathlib import Path
 import xml.etree.ElementTree as ET
 import zipfile
 
@@ -193,6 +194,18 @@ def test_export_of_a_vanished_fmu_names_it(fmu_dir, tmp_path):
     with pytest.raises(FileNotFoundError, match="Contact: FMU file .*ContactEHL.fmu does not exist"):
         ssp.export_ssp(sys_, tmp_path / "again.ssp")
     assert not (tmp_path / "again.ssp").exists()
+
+
+def test_export_onto_one_of_its_own_inputs_is_refused_and_leaves_it_intact(fmu_dir, tmp_path):
+    for fmu in set(FMUS.values()):
+        shutil.copy(fmu_dir / f"{fmu}.fmu", tmp_path)
+    sys_, _ = make(tmp_path, tmp_path, FMPY)
+    for target, what in ((tmp_path / "ContactEHL.fmu", "Contact's FMU"),
+                         (sys_.path, "the scenario file")):
+        before = Path(target).read_bytes()
+        with pytest.raises(ValueError, match=f"it is {what}, which the package is made from"):
+            ssp.export_ssp(sys_, target)
+        assert Path(target).read_bytes() == before
 
 
 def test_parameter_set_refuses_what_fmpy_would_get_wrong(lc_case, fmpy_case):

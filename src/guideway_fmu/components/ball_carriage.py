@@ -5,9 +5,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from pythonfmu import DefaultExperiment
 
 from ..physics import ball_carriage as bc
-from ..physics.dynamics import rk4_step
+from ..physics.dynamics import rk4_step, substeps
 from .base import GuidewaySlave
 
 #: RK4 substeps keep omega_max h below this (RK4 is stable to 2.8; 0.5 keeps the period error
@@ -30,6 +31,9 @@ class BallCarriage5DOF(GuidewaySlave):
     away during a run. Integrated by RK4 substeps (omega_max h <= 0.5 at the state the step
     starts from) with the inputs held over a step. It stands in for VerticalDynamics plus a
     contact FMU when the guide is a ball guide."""
+
+    #: what a host runs without an experiment: the moment-load run of Wu et al. (2012)
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.14, step_size=1e-5)
 
     description = __doc__.splitlines()[0]
     internal_state = ("state", "time")
@@ -87,7 +91,8 @@ class BallCarriage5DOF(GuidewaySlave):
         self._started()
         model, inputs = self.model(), self.model_inputs()
         omega = 2 * math.pi * model.highest_frequency(self.state, inputs["preload"])
-        n = max(1, math.ceil(h * omega / OMEGA_STEP))
+        n = substeps(h, OMEGA_STEP / omega if omega else h,
+                     "the carriage's motion (omega h <= OMEGA_STEP)")
         for k in range(n):
             self.state = rk4_step(model, t + k * h / n, self.state, inputs, h / n)
         self.time = t + h

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from pythonfmu import DefaultExperiment
 
 from ..physics import ball_row
 from .base import GuidewaySlave
@@ -19,6 +20,9 @@ class BallToBallFriction(GuidewaySlave):
     balls' positions are the state, integrated by RK4 substeps with the inputs held over a step
     and a substep ending at each change of the groups (BallRow.advance); they start evenly
     spaced."""
+
+    #: what a host runs without an experiment: a feed stroke of Lin et al. (2019)
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.14, step_size=1e-5)
 
     description = __doc__.splitlines()[0]
     internal_state = ("state", "time")

@@ -8,7 +8,9 @@ every FMU instance of the process. The components therefore never raise through 
   fmi2Discard (the only non-fatal failure status pythonfmu can return), leaving the state and
   the outputs at their last valid values;
 * output getters evaluate the model from the current inputs (direct feedthrough) and, when that
-  fails, log the error and return the last valid values, never NaN.
+  fails, log the error and return the last valid values, never NaN; in Initialization Mode they
+  first set the internal state from the present parameters and inputs, as leaving it will, so
+  a host that records the initial outputs records what the first step starts from.
 
 The modelDescription written by :meth:`to_xml` adds what pythonfmu leaves out: units with base
 units for every Real variable, and ModelStructure with Outputs and InitialUnknowns listing the
@@ -20,7 +22,8 @@ import copy
 import math
 from xml.etree.ElementTree import Element, SubElement
 
-from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
+from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2Variability,
+                       Integer, Real, String)
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
 
 from ..physics.dynamics import ContinuousModel
@@ -40,6 +43,9 @@ class GuidewaySlave(Fmi2Slave):
     role = "guideway"
     #: why the component has no continuous-time model, where it has none (said by the reference)
     without_time_model = "it has none"
+    #: what a host runs when the user gives no experiment: one 0.2 s feed cycle of the paper's
+    #: rig at the 4 us step of its scenarios (components of other rigs state theirs)
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=4e-6)
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -50,6 +56,7 @@ class GuidewaySlave(Fmi2Slave):
         self._outputs: dict[str, float] | None = None
         self._last_valid: dict[str, float] = {}
         self._model = None
+        self._initialising = False
 
     # -- registration -------------------------------------------------------------------
     def parameter(self, name: str, start, unit: str | None, description: str) -> None:
@@ -148,7 +155,11 @@ class GuidewaySlave(Fmi2Slave):
             self.log(f"{self.instance_name}: {exc}", Fmi2Status.error)
             return None
 
+    def enter_initialization_mode(self):
+        self._initialising = True
+
     def exit_initialization_mode(self):
+        self._initialising = False
         self._guarded(lambda: self.initialise() or True)
         self._outputs = None
 
@@ -163,6 +174,8 @@ class GuidewaySlave(Fmi2Slave):
 
     def _output(self, name: str) -> float:
         if self._outputs is None:
+            if self._initialising:  # the outputs as initialization will leave them
+                self._guarded(lambda: self.initialise() or True)
             values = self._guarded(self.evaluate)
             if values is not None and all(math.isfinite(v) for v in values.values()):
                 self._last_valid = values

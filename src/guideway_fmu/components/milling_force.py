@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from pythonfmu import DefaultExperiment
+
 from ..physics import milling_force as mf
 from .base import GuidewaySlave
 
@@ -14,6 +16,9 @@ class MillingForce(GuidewaySlave):
     The feed per tooth follows the feed velocity input; the tooth angles follow the time, so the
     force is periodic at the tooth-passing frequency teeth x spindle_speed. Evaluated exactly at
     the communication points."""
+
+    #: what a host runs without an experiment: a milling pass of Zhang et al. (2019)
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
 
     description = __doc__.splitlines()[0]
     internal_state = ("time",)

@@ -3,6 +3,7 @@ costs (Zhang, Wang and Jiang, fractal-creep wear; physics/wear.py)."""
 from __future__ import annotations
 
 import numpy as np
+from pythonfmu import DefaultExperiment
 
 from ..physics import creep, wear
 from .base import GuidewaySlave
@@ -18,6 +19,9 @@ class Wear(GuidewaySlave):
     input held; time itself plays no part. Feed ``preload`` to a contact FMU's preload (for
     example BallCarriage5DOF.preload) and the fast model stiffens or softens as the raceways
     wear. The guide starts new at the first distance it is given."""
+
+    #: what a host runs without an experiment: the shipped wear scenario
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.1, step_size=1e-4)
 
     description = __doc__.splitlines()[0]
     internal_state = ("wear", "distance_last")

@@ -40,6 +40,8 @@ from typing import TYPE_CHECKING
 
 from fmpy.fmi1 import FMICallException
 
+from .fmu_instance import FATAL
+
 if TYPE_CHECKING:
     from .system import System
 
@@ -171,8 +173,8 @@ class Stabilised(GaussSeidel):
             before = [tg.linearise() for tg in self.tangents]
             try:
                 super().step(t, h)
-            except FMICallException:
-                if saved is None or h <= self.min_step:
+            except FMICallException as exc:
+                if saved is None or h <= self.min_step or exc.status == FATAL:
                     raise
                 bus.restore(saved)
                 return False, max(DISCARD_SHRINK * h, self.min_step)

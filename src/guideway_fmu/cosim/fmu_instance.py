@@ -23,7 +23,8 @@ LOG_LINES = 50  # log messages kept per instance
 # the instance created last (with the right instance name), so they are routed by that name.
 _LOGS: dict[str, deque] = {}
 
-__all__ = ["FmuInstance", "FMICallException"]
+__all__ = ["FmuInstance", "FMICallException", "FATAL"]
+FATAL = 4  # fmi2Fatal: every instance of the process is then beyond use
 
 
 class FmuInstance:
@@ -45,15 +46,21 @@ class FmuInstance:
         self.log: deque[str] = deque(maxlen=LOG_LINES)
         _LOGS[name] = self.log
         self.fmi_time = 0.0
+        #: set once a call returned fmi2Fatal: FMI then forbids any further call
+        self.fatal = False
         self._unzip = extract(str(self.path))
-        self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=self._unzip,
-                             modelIdentifier=cs.modelIdentifier, instanceName=name)
-        self._callbacks = fmi2CallbackFunctions()
-        self._callbacks.logger = fmi2CallbackLoggerTYPE(self._on_log)
-        self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        addLoggerProxy(byref(self._callbacks))
-        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=True)
+        try:
+            self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=self._unzip,
+                                 modelIdentifier=cs.modelIdentifier, instanceName=name)
+            self._callbacks = fmi2CallbackFunctions()
+            self._callbacks.logger = fmi2CallbackLoggerTYPE(self._on_log)
+            self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+            self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+            addLoggerProxy(byref(self._callbacks))
+            self.fmu.instantiate(callbacks=self._callbacks, loggingOn=True)
+        except BaseException:
+            shutil.rmtree(self._unzip, ignore_errors=True)  # no instance: nothing else to free
+            raise
 
     @staticmethod
     def _on_log(env, instance, status, category, message):
@@ -160,10 +167,12 @@ class FmuInstance:
         self.fmu.exitInitializationMode()
 
     def close(self) -> None:
-        """Terminate and free the instance, unload it and delete its extracted files."""
-        try:
-            self.fmu.terminate()
-        except FMICallException:
-            pass  # an instance that failed may refuse to terminate; free it all the same
-        self.fmu.freeInstance()
+        """Terminate and free the instance, unload it and delete its extracted files; after
+        fmi2Fatal only the files (FMI allows no call into an instance then)."""
+        if not self.fatal:
+            try:
+                self.fmu.terminate()
+            except FMICallException:
+                pass  # an instance that failed may refuse to terminate; free it all the same
+            self.fmu.freeInstance()
         shutil.rmtree(self._unzip, ignore_errors=True)

@@ -16,7 +16,7 @@ import numpy as np
 from fmpy.fmi1 import FMICallException
 
 from .algorithms import ALGORITHMS, order
-from .fmu_instance import FmuInstance
+from .fmu_instance import FATAL, FmuInstance
 from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording
 from .system import System
@@ -53,6 +53,18 @@ class SimulationError(RuntimeError):
         self.result = result
 
 
+class NonFiniteOutput(FMICallException):
+    """An FMU returned NaN or an infinite value with status OK (an error for the master: it would
+    reach the other FMUs and the results silently)."""
+
+    def __init__(self, instance: str, variable: str, value):
+        super().__init__(f"fmi2Get {variable}", 3)
+        self.instance, self.variable, self.value = instance, variable, value
+
+    def __str__(self) -> str:
+        return f"output {self.variable} is {self.value} (with status OK)"
+
+
 class Bus:
     """The instances of a system and the latest value of every exchanged or recorded variable,
     ``values[(instance, variable)]``; batched reads and writes, one FMI call per type.
@@ -86,6 +98,8 @@ class Bus:
         values = self.values
         for read, keys in groups:
             for key, value in zip(keys, read()):
+                if value - value != 0:  # NaN or infinite (Strings are never exchanged)
+                    raise NonFiniteOutput(*key, value)
                 values[key] = value
 
     def read_outputs(self, name: str) -> None:
@@ -192,6 +206,9 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
             w.started(system, bus)
         _run(exp, algorithm_class(bus, system), bus, watchers, result)
     except FMICallException as exc:
+        if exc.status == FATAL:  # no call into any instance after fmi2Fatal
+            for inst in instances.values():
+                inst.fatal = True
         failing = getattr(exc, "instance", None)
         logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
                          if failing is None or n == failing)
@@ -223,7 +240,11 @@ def _run(exp, algorithm, bus, watchers, result) -> None:
     try:
         while t < exp.stop - eps:
             h_try = min(h, exp.stop - t)
-            accepted, h_next = algorithm.step(t, h_try)
+            try:
+                accepted, h_next = algorithm.step(t, h_try)
+            except NonFiniteOutput as exc:
+                exc.time = t + h_try  # read after the step to it
+                raise
             if not accepted:
                 rejected += 1
                 h = h_next

@@ -73,11 +73,18 @@ def export_ssp(system: System, out: str | Path) -> Path:
     """Write ``system`` as an SSP 1.0 package to ``out`` (a new ``.ssp`` zip); returns its path.
 
     Raises FileNotFoundError naming the file if ``out``'s folder or an FMU file does not exist,
-    ValueError if two different FMU files share a file name.
+    ValueError if two different FMU files share a file name or ``out`` is one of the scenario's
+    FMUs or its description (writing it would destroy what it packs).
     """
     out = Path(out)
     if not out.parent.is_dir():
         raise FileNotFoundError(f"cannot write {out}: folder {out.parent} does not exist")
+    inputs = {comp.fmu.resolve(): f"{comp.name}'s FMU" for comp in system.components.values()}
+    if system.path is not None:
+        inputs[Path(system.path).resolve()] = "the scenario file"
+    if out.resolve() in inputs:
+        raise ValueError(f"cannot write {out}: it is {inputs[out.resolve()]}, which the package "
+                         "is made from")
     sources: dict[str, Path] = {}
     for comp in system.components.values():
         if not comp.fmu.is_file():

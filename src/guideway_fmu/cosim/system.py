@@ -459,6 +459,13 @@ def check(system: System, src: str) -> System:
             raise fail(f"components.{name}", "fmu", f"cannot read {comp.fmu}: {exc}") from exc
         if md.fmiVersion != "2.0" or md.coSimulation is None:
             raise fail(f"components.{name}", "fmu", f"{comp.fmu.name} is not an FMI 2.0 co-simulation FMU")
+        cs = md.coSimulation
+        if exp.tolerance > 0 and not cs.canGetAndSetFMUstate:
+            raise fail("experiment", "tolerance", f"step-size control rolls every FMU back, and "
+                       f"{name} ({comp.fmu.name}) cannot get and set its state "
+                       "(canGetAndSetFMUstate = false): use tolerance = 0")
+        if not cs.canHandleVariableCommunicationStepSize:
+            _fixed_step(exp, name, comp.fmu.name, fail)
         variables[name] = {v.name: v for v in md.modelVariables}
         # ModelStructure: an output without a dependencies list depends on everything
         feedthrough[name] = {u.variable.name: u.dependencies is None or any(
@@ -494,6 +501,9 @@ def check(system: System, src: str) -> System:
         table = f"connections #{i + 1}"
         out = need(table, "from", c.source, c.output, ("output",))
         inp = need(table, "to", c.target, c.input, ("input",))
+        if out.type == "String":
+            raise fail(table, "from", f"{c.source}.{c.output} is a String: the master exchanges "
+                       "numbers only (Real, Integer, Boolean, Enumeration)")
         if out.type != inp.type:
             raise fail(table, "to", f"type {inp.type} cannot take the {out.type} output {c.source}.{c.output}")
         feed(table, "to", (c.target, c.input), f"{c.source}.{c.output}")
@@ -519,15 +529,18 @@ def check(system: System, src: str) -> System:
             v = need(f"{table}.settings", key, t.instance, key, ("parameter",))
             if not _fits(v.type, value):
                 raise fail(f"{table}.settings", key, f"{v.type} variable cannot take {value!r}")
+    def numeric(table, key, name):
+        inst, _, var = name.partition(".")
+        if need(table, key, inst, var, None).type == "String":
+            raise fail(table, key, f"{name} is a String: results hold numbers only")
+
     for v in system.record:
-        inst, _, var = v.partition(".")
-        need("record", "variables", inst, var, None)
+        numeric("record", "variables", v)
     for kind in PLOT_KINDS:
         for v in system.plots.get(kind, []):
             if not isinstance(v, str):
                 raise fail("plots", kind, f"entries must be '<instance>.<variable>', got {v!r}")
-            inst, _, var = v.partition(".")
-            need("plots", kind, inst, var, None)
+            numeric("plots", kind, v)
     if system.record_interval < 0 or not math.isfinite(system.record_interval):
         raise fail("record", "interval", f"must be >= 0, got {system.record_interval}")
     object.__setattr__(system, "variables", variables)
@@ -539,11 +552,29 @@ def _article(word: str) -> str:
     return f"{'an' if word[0] in 'aeiou' else 'a'} {word}"
 
 
+def _fixed_step(exp: Experiment, name: str, fmu: str, fail) -> None:
+    """Refuse what an FMU that cannot change its communication step cannot run: step-size
+    control, or a run whose length is not a whole number of steps (the last would be short)."""
+    why = (f"{name} ({fmu}) cannot change its communication step size "
+           "(canHandleVariableCommunicationStepSize = false)")
+    if exp.tolerance > 0:
+        raise fail("experiment", "tolerance", f"{why}: use tolerance = 0")
+    steps = (exp.stop - exp.start) / exp.step
+    if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
+        whole = exp.start + max(1, round(steps)) * exp.step
+        raise fail("experiment", "stop", f"{why}, and stop - start = {exp.stop - exp.start:g} s "
+                   f"is not a whole number of steps of {exp.step:g} s: use stop = {whole:.12g}")
+
+
+INT32 = (-2**31, 2**31 - 1)  # the range of an FMI 2 Integer (fmi2Integer is a C int)
+
+
 def _fits(kind: str, value) -> bool:
     if kind == "Real":
         return isinstance(value, (int, float)) and not isinstance(value, bool)
     if kind in ("Integer", "Enumeration"):
-        return isinstance(value, int) and not isinstance(value, bool)
+        return (isinstance(value, int) and not isinstance(value, bool)
+                and INT32[0] <= value <= INT32[1])
     if kind == "Boolean":
         return isinstance(value, bool)
     return isinstance(value, str)

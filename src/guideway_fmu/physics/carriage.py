@@ -23,7 +23,7 @@ import math
 from dataclasses import dataclass
 
 from . import checks
-from .dynamics import ContinuousModel
+from .dynamics import ContinuousModel, substeps
 from .roller_contact import OpposedRows
 
 STANDARD_GRAVITY = 9.80665  # m/s^2
@@ -125,7 +125,8 @@ class CarriageModel(ContinuousModel):
             return self.acceleration(s, contact(s, yy, vv), f_ext)
 
         omega = max(math.sqrt(kk), c_contact / m, 2.0 * math.pi * self.load.frequency)
-        n = max(1, math.ceil(h * omega / SUBSTEP_PHASE))
+        n = substeps(h, SUBSTEP_PHASE / omega if omega else h,
+                     "the body's motion (omega h <= SUBSTEP_PHASE)")
         dt = h / n
         for i in range(n):
             s = t + i * dt

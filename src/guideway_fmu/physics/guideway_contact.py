@@ -17,9 +17,7 @@ follows a path over the step (:func:`linear_path`, :func:`hermite_path`).
 """
 from __future__ import annotations
 
-import math
-
-from .dynamics import ContinuousModel
+from .dynamics import ContinuousModel, substeps
 from . import checks
 from .film import LineContact
 from .guideway import Guideway, RowKernel, net_force, quasi_static_state, quasi_static_stiffness
@@ -104,7 +102,8 @@ class RollerContact(ContinuousModel):
         film turns negative."""
         rates = self.kernel.film_rates
         hu, hl = films
-        n = max(1, math.ceil(h * abs(u) / (FILM_SUBSTEP * max(min(hu, hl), FILM_FLOOR))))
+        n = substeps(h, FILM_SUBSTEP * max(min(hu, hl), FILM_FLOOR) / abs(u) if u else h,
+                     "the film (FILM_SUBSTEP h / |u|)")
         start, end = self.kernel.loads(path(0.0), hu, hl), self.kernel.loads(path(h), hu, hl)
         if any((a > 0.0) != (b > 0.0) for a, b in zip(start, end)):
             n = max(n, TOUCHDOWN_SUBSTEPS)  # a roller lifts off or lands: the rate's cusp
