@@ -45,6 +45,7 @@ def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_p
     summary = json.loads((out / "summary.json").read_text())
     assert summary["steps"] == 375 and summary["algorithm"] == "stabilised"  # 4 us steps
     assert summary["parameters"]["Contact"]["preload"] == 36800.0
+    assert summary["parameters"]["Feed"]["profile"] == "biharmonic"  # text, not "b'biharmonic'"
     assert {"results.csv", "time.png", "spectrum.png", "film.png", "envelope.png"} <= set(summary["files"])
     data = np.genfromtxt(out / "results.csv", delimiter=",", names=True)
     y = data["Carriagey"] - data["Carriagey"].mean()

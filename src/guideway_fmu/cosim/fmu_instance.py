@@ -89,9 +89,11 @@ class FmuInstance:
             self.writer([name])([value])
 
     def get(self, name: str):
+        """The variable's value; a String as text (fmpy returns the C bytes)."""
         v = self.variable(name)
         if v.type == "String":
-            return self.fmu.getString([v.valueReference])[0]
+            value = self.fmu.getString([v.valueReference])[0]
+            return value.decode("utf-8", "replace") if isinstance(value, bytes) else value
         return self.reader([name])()[0]
 
     # -- batched access for the master ------------------------------------------------------
