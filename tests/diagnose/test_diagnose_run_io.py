@@ -197,3 +197,13 @@ def test_friction_sign_without_a_friction_channel_is_refused(tmp_path):
     (path / "rig.toml").write_text(text)
     with pytest.raises(ValueError, match="goes with a friction_force channel"):
         load_run(path)
+
+
+@pytest.mark.parametrize("name", ["data.csv", "rig.toml"])
+def test_a_file_that_is_not_utf8_names_its_line_and_byte(tmp_path, name):
+    run = write(tmp_path)
+    path = run / name
+    lines = path.read_bytes().split(b"\n")
+    lines[2] = lines[2] + b" \xe9"  # a Latin-1 e-acute on line 3
+    path.write_bytes(b"\n".join(lines))
+    refused(run, name, "line 3", "byte 0xe9 is not UTF-8")

@@ -7,6 +7,7 @@ lines of data.csv, the header being row 1.
 from __future__ import annotations
 
 import csv
+import io
 import math
 import tomllib
 import warnings
@@ -106,6 +107,17 @@ def _need_file(path: Path) -> Path:
     return path
 
 
+def _text(path: Path) -> str:
+    """The file's text; a file that is not UTF-8 raises ValueError naming the line and byte."""
+    raw = _need_file(path).read_bytes()
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        raise ValueError(f"{path}: line {line}: byte {raw[exc.start]:#04x} is not UTF-8 text "
+                         "(save the file as UTF-8)") from None
+
+
 def _number(source, table, key, value, positive=False, non_negative=False):
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
     if ok and positive:
@@ -133,7 +145,7 @@ def read_rig(path: Path) -> dict:
     """rig.toml as a checked dict (format, [rig], optional sections, [model], [channels])."""
     source = str(path)
     try:
-        data = tomllib.loads(_need_file(path).read_text(encoding="utf-8"))
+        data = tomllib.loads(_text(path))
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{source}: not valid TOML: {exc}") from None
     if data.get("format") != FORMAT:
@@ -212,8 +224,7 @@ def read_rig(path: Path) -> dict:
 def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
     """data.csv as (time, {column: samples}, warnings) after checking every cell."""
     source = str(path)
-    with _need_file(path).open(newline="", encoding="utf-8") as handle:
-        rows = list(csv.reader(handle))
+    rows = list(csv.reader(io.StringIO(_text(path), newline="")))
     if not rows:
         raise ValueError(f"{source}: empty file, expected a header row starting with 'time'")
     header = [cell.strip() for cell in rows[0]]
