@@ -5,9 +5,9 @@ from guideway_fmu.physics.dynamics import MAX_SUBSTEPS, substeps
 
 
 def test_substeps_hand_values_and_the_bound():
-    assert substeps(1.0, 0.3, "x") == 4  # ceil(3.33)
-    assert substeps(1.0, 2.0, "x") == 1
-    assert substeps(1.0, 1.0 / MAX_SUBSTEPS, "x") == MAX_SUBSTEPS
-    for largest in (0.5 / MAX_SUBSTEPS, 0.0, -1.0, float("nan")):
+    assert substeps(10 / 3, "x") == 4  # rounded up
+    assert substeps(0.0, "x") == 1  # nothing limits the step: one
+    assert substeps(MAX_SUBSTEPS, "x") == MAX_SUBSTEPS
+    for count in (MAX_SUBSTEPS + 0.5, float("inf"), float("nan")):
         with pytest.raises(ValueError, match="substeps of the body"):
-            substeps(1.0, largest, "the body")
+            substeps(count, "the body")

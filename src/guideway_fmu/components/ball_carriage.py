@@ -91,8 +91,7 @@ class BallCarriage5DOF(GuidewaySlave):
         self._started()
         model, inputs = self.model(), self.model_inputs()
         omega = 2 * math.pi * model.highest_frequency(self.state, inputs["preload"])
-        n = substeps(h, OMEGA_STEP / omega if omega else h,
-                     "the carriage's motion (omega h <= OMEGA_STEP)")
+        n = substeps(h * omega / OMEGA_STEP, "the carriage's motion (omega h <= OMEGA_STEP)")
         for k in range(n):
             self.state = rk4_step(model, t + k * h / n, self.state, inputs, h / n)
         self.time = t + h

@@ -125,8 +125,7 @@ class CarriageModel(ContinuousModel):
             return self.acceleration(s, contact(s, yy, vv), f_ext)
 
         omega = max(math.sqrt(kk), c_contact / m, 2.0 * math.pi * self.load.frequency)
-        n = substeps(h, SUBSTEP_PHASE / omega if omega else h,
-                     "the body's motion (omega h <= SUBSTEP_PHASE)")
+        n = substeps(h * omega / SUBSTEP_PHASE, "the body's motion (omega h <= SUBSTEP_PHASE)")
         dt = h / n
         for i in range(n):
             s = t + i * dt

@@ -65,21 +65,20 @@ class Algebraic(ContinuousModel):
         return self.function(**{name: inputs[name] for name in self.inputs})
 
 
-
 #: Most substeps one communication step may take: past it an FMU refuses the step (discard,
 #: naming the cause) instead of computing for minutes inside one FMI call
 MAX_SUBSTEPS = 100_000
 
 
-def substeps(step: float, largest: float, what: str) -> int:
-    """Equal substeps [-] of a step of ``step`` [s] no longer than ``largest`` [s]; raises
-    ValueError naming ``what`` limits them when there would be more than MAX_SUBSTEPS (or the
-    limit is not a positive number)."""
-    count = step / largest if largest > 0.0 else math.inf
+def substeps(count: float, what: str) -> int:
+    """The whole number of substeps [-] a step needs, ``count`` rounded up (at least 1); raises
+    ValueError naming ``what`` sets their length when that is more than MAX_SUBSTEPS or not a
+    number."""
     if not count <= MAX_SUBSTEPS:
-        raise ValueError(f"a step of {step:g} s needs {count:.3g} substeps of {what} (more "
-                         f"than {MAX_SUBSTEPS}): shorten the step or check the parameters")
+        raise ValueError(f"the step needs {count:.3g} substeps of {what} (more than "
+                         f"{MAX_SUBSTEPS}): shorten the step or check the parameters")
     return max(1, math.ceil(count))
+
 
 def rk4_step(model: ContinuousModel, t: float, state, inputs: dict, h: float):
     """The state after one classical Runge-Kutta step of ``h`` [s], inputs held over it."""

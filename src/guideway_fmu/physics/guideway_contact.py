@@ -102,7 +102,7 @@ class RollerContact(ContinuousModel):
         film turns negative."""
         rates = self.kernel.film_rates
         hu, hl = films
-        n = substeps(h, FILM_SUBSTEP * max(min(hu, hl), FILM_FLOOR) / abs(u) if u else h,
+        n = substeps(h * abs(u) / (FILM_SUBSTEP * max(min(hu, hl), FILM_FLOOR)),
                      "the film (FILM_SUBSTEP h / |u|)")
         start, end = self.kernel.loads(path(0.0), hu, hl), self.kernel.loads(path(h), hu, hl)
         if any((a > 0.0) != (b > 0.0) for a, b in zip(start, end)):
