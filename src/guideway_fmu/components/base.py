@@ -155,12 +155,15 @@ class GuidewaySlave(Fmi2Slave):
             self.log(f"{self.instance_name}: {exc}", Fmi2Status.error)
             return None
 
+    def _initialise_guarded(self) -> None:
+        self._guarded(lambda: self.initialise() or True)
+
     def enter_initialization_mode(self):
         self._initialising = True
 
     def exit_initialization_mode(self):
         self._initialising = False
-        self._guarded(lambda: self.initialise() or True)
+        self._initialise_guarded()
         self._outputs = None
 
     def do_step(self, current_time: float, step_size: float) -> bool:
@@ -175,7 +178,7 @@ class GuidewaySlave(Fmi2Slave):
     def _output(self, name: str) -> float:
         if self._outputs is None:
             if self._initialising:  # the outputs as initialization will leave them
-                self._guarded(lambda: self.initialise() or True)
+                self._initialise_guarded()
             values = self._guarded(self.evaluate)
             if values is not None and all(math.isfinite(v) for v in values.values()):
                 self._last_valid = values

@@ -23,7 +23,8 @@ LOG_LINES = 50  # log messages kept per instance
 # the instance created last (with the right instance name), so they are routed by that name.
 _LOGS: dict[str, deque] = {}
 
-__all__ = ["FmuInstance", "FMICallException", "FATAL"]
+__all__ = ["FmuInstance", "FMICallException", "ERROR", "FATAL"]
+ERROR = 3  # fmi2Error: the instance cannot go on
 FATAL = 4  # fmi2Fatal: every instance of the process is then beyond use
 
 

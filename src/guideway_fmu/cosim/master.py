@@ -16,7 +16,7 @@ import numpy as np
 from fmpy.fmi1 import FMICallException
 
 from .algorithms import ALGORITHMS, order
-from .fmu_instance import FATAL, FmuInstance
+from .fmu_instance import ERROR, FATAL, FmuInstance
 from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording
 from .system import System
@@ -58,7 +58,7 @@ class NonFiniteOutput(FMICallException):
     reach the other FMUs and the results silently)."""
 
     def __init__(self, instance: str, variable: str, value):
-        super().__init__(f"fmi2Get {variable}", 3)
+        super().__init__(f"fmi2Get {variable}", ERROR)
         self.instance, self.variable, self.value = instance, variable, value
 
     def __str__(self) -> str:

@@ -529,6 +529,7 @@ def check(system: System, src: str) -> System:
             v = need(f"{table}.settings", key, t.instance, key, ("parameter",))
             if not _fits(v.type, value):
                 raise fail(f"{table}.settings", key, f"{v.type} variable cannot take {value!r}")
+
     def numeric(table, key, name):
         inst, _, var = name.partition(".")
         if need(table, key, inst, var, None).type == "String":
