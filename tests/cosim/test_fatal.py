@@ -11,22 +11,26 @@ import textwrap
 import pytest
 from pythonfmu.builder import FmuBuilder
 
-RAISER = '''
-from pythonfmu import Fmi2Causality, Fmi2Slave, Real
+FAULTY = '''
+from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
 
 
-class Raiser(Fmi2Slave):
-    """x = t; raises inside doStep once t reaches 5 ms."""
+class Faulty(Fmi2Slave):
+    """x = t; as `fault` says, raises inside the doStep that starts at 5 ms ("raise") or
+    outputs NaN with status OK from the one that ends there ("nan")."""
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.x = 0.0
+        self.x, self.fault = 0.0, "raise"
         self.register_variable(Real("x", causality=Fmi2Causality.output))
+        self.register_variable(String("fault", causality=Fmi2Causality.parameter,
+                                      variability=Fmi2Variability.tunable))
 
     def do_step(self, current_time, step_size):
-        if current_time >= 0.005:
-            raise RuntimeError("the raiser's model broke at 5 ms")
-        self.x = current_time + step_size
+        end = current_time + step_size
+        if self.fault == "raise" and current_time >= 0.005 - 1e-12:
+            raise RuntimeError("the faulty model broke at 5 ms")
+        self.x = float("nan") if self.fault == "nan" and end >= 0.005 - 1e-12 else end
         return True
 '''
 
@@ -36,7 +40,7 @@ from pathlib import Path
 from guideway_fmu.cosim import master, system
 
 s = (system.Builder("fatal").experiment(start=0.0, stop=0.01, step=0.001, algorithm="{algorithm}")
-     .component("R", "{fmu}").component("Feed", "{feed}").system())
+     .component("R", "{fmu}", fault="raise").component("Feed", "{feed}").system())
 try:
     master.simulate(s)
 except master.SimulationError as exc:
@@ -48,22 +52,22 @@ except master.SimulationError as exc:
 
 
 @pytest.fixture(scope="module")
-def raiser(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("raiser")
-    (folder / "raiser.py").write_text(RAISER)
-    return FmuBuilder.build_FMU(folder / "raiser.py", dest=folder / "Raiser.fmu")
+def faulty(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("faulty")
+    (folder / "faulty.py").write_text(FAULTY)
+    return FmuBuilder.build_FMU(folder / "faulty.py", dest=folder / "Faulty.fmu")
 
 
 @pytest.mark.parametrize("algorithm", ["jacobi", "stabilised"])
-def test_fatal_fmu_is_reported_and_the_process_exits_cleanly(raiser, fmu_dir, algorithm):
-    script = textwrap.dedent(CHILD.format(algorithm=algorithm, fmu=raiser,
+def test_fatal_fmu_is_reported_and_the_process_exits_cleanly(faulty, fmu_dir, algorithm):
+    script = textwrap.dedent(CHILD.format(algorithm=algorithm, fmu=faulty,
                                           feed=fmu_dir / "FeedKinematics.fmu"))
     for _ in range(5):
         run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                              timeout=120)
         assert run.returncode == 3, (run.returncode, run.stderr[-2000:])
         assert "FMU instance 'R' failed at t = 0.005 s" in run.stderr
-        assert "the raiser's model broke at 5 ms" in run.stderr
+        assert "the faulty model broke at 5 ms" in run.stderr
         assert "ROWS 6" in run.stdout  # t = 0 ... 5 ms recorded before the failure
 
 
@@ -91,32 +95,11 @@ def test_an_fmu_that_cannot_be_instantiated_leaves_no_extracted_folder(fmu_dir, 
     assert list(scratch.iterdir()) == []
 
 
-NAN_SOURCE = '''
-from pythonfmu import Fmi2Causality, Fmi2Slave, Real
-
-
-class NanSource(Fmi2Slave):
-    """x = t until 5 ms, then NaN, with status OK."""
-
-    def __init__(self, **kwargs):
-        super().__init__(**kwargs)
-        self.x = 0.0
-        self.register_variable(Real("x", causality=Fmi2Causality.output))
-
-    def do_step(self, current_time, step_size):
-        end = current_time + step_size
-        self.x = end if end < 0.005 - 1e-12 else float("nan")
-        return True
-'''
-
-
-def test_nan_from_a_third_party_fmu_stops_the_run_naming_it(tmp_path, fmu_dir):
+def test_nan_from_a_third_party_fmu_stops_the_run_naming_it(faulty, fmu_dir):
     from guideway_fmu.cosim import master, system
 
-    (tmp_path / "nan_source.py").write_text(NAN_SOURCE)
-    fmu = FmuBuilder.build_FMU(tmp_path / "nan_source.py", dest=tmp_path / "NanSource.fmu")
     s = (system.Builder("nan").experiment(start=0.0, stop=0.01, step=0.001, algorithm="jacobi")
-         .component("S", fmu).component("Feed", fmu_dir / "FeedKinematics.fmu")
+         .component("S", faulty, fault="nan").component("Feed", fmu_dir / "FeedKinematics.fmu")
          .connect("S.x", "Feed.u_cmd").system())
     with pytest.raises(master.SimulationError,
                        match=r"FMU instance 'S' failed at t = 0.005 s: output x is nan"):
