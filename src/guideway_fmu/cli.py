@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball | wear``."""
+"""Command line: ``guideway-fmu build | host-env | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball | wear``."""
 from __future__ import annotations
 
 import argparse
@@ -169,12 +169,33 @@ def _wear(args) -> str:
     return wear.format_result(result) + (f"\nplot: {result['plot']}" if args.plot else "")
 
 
+def _host_env(fmu) -> int:
+    from .components import host_env
+    environment = host_env.host_environment()
+    print(host_env.exports(environment), end="")
+    if fmu is None:
+        return 0
+    run = host_env.check(None if fmu is True else fmu, environment)
+    if run.status == 0:
+        print(f"# check: {run.fmu.name} ran in a C host with this environment and exited 0",
+              file=sys.stderr)
+        return 0
+    print(f"# check: {run.fmu.name} in a C host with this environment exited with status "
+          f"{run.status}:\n{run.stderr}", file=sys.stderr)
+    return 1
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="guideway-fmu", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("build", help="build the FMUs and their README")
     p.add_argument("--out", type=Path, default=Path("fmus"), help="output folder (default fmus/)")
     p.add_argument("names", nargs="*", help="FMUs to build (default: all)")
+    p = sub.add_parser("host-env", help="export lines of the environment a C host (libcosim, "
+                       "commercial tools) needs to run the FMUs with this Python")
+    p.add_argument("--check", nargs="?", type=Path, const=True, default=None, metavar="FMU",
+                   help="also run an FMU (default: FeedKinematics) in a compiled C host with that "
+                        "environment; the result goes to stderr, exit status 1 if it fails")
     p = sub.add_parser("run", help="co-simulate a scenario: results.csv, summary.json, plots")
     _scenario_args(p)
     p.add_argument("--out", type=Path, required=True, help="output folder")
@@ -216,6 +237,8 @@ def main(argv: list[str] | None = None) -> int:
             from .components.build import build
             for path in build(args.out, args.names or None):
                 print(path)
+        elif args.command == "host-env":
+            return _host_env(args.check)
         elif args.command == "run":
             from .cosim.run import run
             result = run(_load(args), args.out, progress=not args.no_progress)

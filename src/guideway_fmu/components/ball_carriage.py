@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from pythonfmu import DefaultExperiment
+from .runtime import DefaultExperiment
 
 from ..physics import ball_carriage as bc
 from ..physics.dynamics import rk4_step, substeps

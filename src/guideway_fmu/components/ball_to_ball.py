@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from pythonfmu import DefaultExperiment
+from .runtime import DefaultExperiment
 
 from ..physics import ball_row
 from .base import GuidewaySlave

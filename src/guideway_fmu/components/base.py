@@ -22,11 +22,9 @@ import copy
 import math
 from xml.etree.ElementTree import Element, SubElement
 
-from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2Variability,
-                       Integer, Real, String)
-from pythonfmu.enums import Fmi2Initial, Fmi2Status
-
 from ..physics.dynamics import ContinuousModel
+from .runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave, Fmi2Status,
+                      Fmi2Variability, Integer, Real, String)
 from .units import BASE_UNITS
 
 

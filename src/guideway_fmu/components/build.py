@@ -1,50 +1,60 @@
 """Build the guideway FMUs with pythonfmu and document their variables.
 
-Each FMU carries the project's ``physics`` and ``components`` code in its resources, so it runs
-wherever the host Python has numpy and scipy. A pythonfmu FMU puts its resources on the
-process-wide ``sys.path``, so the copy is renamed ``guideway_fmu_<FMU>_<hash>`` (hash of the code)
-and the slave script ``<FMU>_<hash>.py``: FMUs of different kinds or built from different code
-never import each other's modules, and an FMU whose extracted folder was deleted by its host
-cannot break the next one.
+Each FMU carries the modules of this package its component imports (found by
+:mod:`modulefinder`) and the pythonfmu runtime it was built with, so it runs wherever the host
+Python has numpy and scipy. A pythonfmu FMU puts its resources on the process-wide ``sys.path``,
+so the copy is renamed ``guideway_fmu_<FMU>_<hash>`` (hash of the code it carries) and the slave
+script ``<FMU>_<hash>.py``; the runtime sits inside that package (``_pythonfmu``, see
+:mod:`.runtime`). FMUs of different kinds or built from different code never import each
+other's modules or runtime, and an FMU whose extracted folder was deleted by its host cannot break
+the next one.
 """
 from __future__ import annotations
 
 import hashlib
+import modulefinder
 import shutil
 import sys
 import tempfile
+import zipfile
 from pathlib import Path
 
+import pythonfmu
 from fmpy import read_model_description
 from pythonfmu.builder import FmuBuilder
 
-from . import registry
+from . import exit_patch, registry
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
-SHIPPED = ("__init__.py", "physics", "components")
-
-# pythonfmu 0.7 releases one reference it does not own to the slave script's namespace each time
-# it creates a slave (NTNU-IHB/PythonFMU issue #228): with nothing more, the namespace is freed at
-# the first instance and the next instantiation in the process fails or corrupts memory. The
-# script therefore holds references to its own namespace for that many instantiations.
-INSTANTIATIONS_PER_PROCESS = 1_000_000
 SLAVE_SCRIPT = '''"""pythonfmu entry point of {name}."""
-from {package}.components.{module} import {name}
+import sys
+import traceback
 
-_NAMESPACE_REFS = [globals()] * INSTANTIATIONS
-'''.replace("INSTANTIATIONS", str(INSTANTIATIONS_PER_PROCESS))
+try:
+    from {package}.components.runtime import hold_namespace
+    from {package}.components.{module} import {name}
+except BaseException:
+    print("FMU {name} cannot import its code; a C host needs the environment that "
+          "`guideway-fmu host-env` prints:", file=sys.stderr)
+    traceback.print_exc()
+    raise
+hold_namespace(globals())
+'''
 
 
-def _shipped_files():
-    for entry in SHIPPED:
-        path = PACKAGE_DIR / entry
-        yield from ([path] if path.is_file() else sorted(path.rglob("*.py")))
+def shipped_files(cls: type) -> list[Path]:
+    """The package's source files an FMU of component class ``cls`` needs (its imports, closed)."""
+    finder = modulefinder.ModuleFinder(path=[str(PACKAGE_DIR.parent)])
+    for module in (cls.__module__, f"{__package__}.runtime"):
+        finder.import_hook(module)
+    files = {Path(m.__file__) for m in finder.modules.values() if m.__file__}
+    return sorted(f for f in files if f.is_relative_to(PACKAGE_DIR))
 
 
-def code_hash() -> str:
-    """Short hash of the code an FMU ships; changes whenever that code changes."""
-    digest = hashlib.sha256()
-    for path in _shipped_files():
+def code_hash(files: list[Path]) -> str:
+    """Short hash of the code an FMU ships (``files`` and the runtime's version)."""
+    digest = hashlib.sha256(pythonfmu.__version__.encode())
+    for path in files:
         digest.update(str(path.relative_to(PACKAGE_DIR)).encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()[:10]
@@ -56,32 +66,53 @@ def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     classes = [registry.component(n) for n in (registry.names() if names is None else names)]
-    tag = code_hash()
-    built = []
+    built, tags = [], []
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_build_") as tmp:
         tmp = Path(tmp)
         sys.path.insert(0, str(tmp))
         try:
             for cls in classes:
                 name = cls.__name__
-                package = f"guideway_fmu_{name}_{tag}"
-                for path in _shipped_files():
-                    target = tmp / package / path.relative_to(PACKAGE_DIR)
+                files = shipped_files(cls)
+                tag = code_hash(files)
+                tags.append(tag)
+                package = tmp / f"guideway_fmu_{name}_{tag}"
+                for path in files:
+                    target = package / path.relative_to(PACKAGE_DIR)
                     target.parent.mkdir(parents=True, exist_ok=True)
                     shutil.copy2(path, target)
                 script = tmp / f"{name}_{tag}.py"
                 module = cls.__module__.rsplit(".", 1)[1]
-                script.write_text(SLAVE_SCRIPT.format(name=name, package=package, module=module))
+                script.write_text(SLAVE_SCRIPT.format(name=name, package=package.name,
+                                                      module=module))
                 fmu = FmuBuilder.build_FMU(script, dest=out_dir / f"{name}.fmu",
-                                           project_files=[tmp / package],
-                                           canGetAndSetFMUstate=True)
-                built.append(Path(fmu))
+                                           project_files=[package], canGetAndSetFMUstate=True)
+                built.append(_finish(Path(fmu), package.name))
         finally:
             sys.path.remove(str(tmp))
-            for module in [m for m in sys.modules if tag in m]:
+            for module in [m for m in sys.modules if any(tag in m for tag in tags)]:
                 del sys.modules[module]
     write_readme(out_dir, sorted(out_dir.glob("*.fmu")))
     return built
+
+
+def _finish(fmu: Path, package: str) -> Path:
+    """Move the pythonfmu runtime the builder put in ``resources/pythonfmu`` (shared by every
+    pythonfmu FMU of a process) into the FMU's own package as ``_pythonfmu``, and make the Linux
+    binary safe at exit (:mod:`.exit_patch`); returns ``fmu``."""
+    shared, private = "resources/pythonfmu/", f"resources/{package}/_pythonfmu/"
+    finished = fmu.with_suffix(".finishing")
+    with zipfile.ZipFile(fmu) as source, \
+            zipfile.ZipFile(finished, "w", zipfile.ZIP_DEFLATED) as target:
+        for entry in source.infolist():
+            name, data = entry.filename, source.read(entry)
+            if name.startswith(shared):
+                name = private + name[len(shared):]
+            elif name.startswith("binaries/linux64/") and name.endswith(".so"):
+                data = exit_patch.patch(data)
+            target.writestr(name, data)
+    finished.replace(fmu)
+    return fmu
 
 
 def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:

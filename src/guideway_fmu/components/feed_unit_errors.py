@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from pythonfmu import DefaultExperiment
+from .runtime import DefaultExperiment
 
 from ..physics import feed_unit as fu
 from ..physics import hertz_point

@@ -3,7 +3,7 @@ costs (Zhang, Wang and Jiang, fractal-creep wear; physics/wear.py)."""
 from __future__ import annotations
 
 import numpy as np
-from pythonfmu import DefaultExperiment
+from .runtime import DefaultExperiment
 
 from ..physics import creep, wear
 from .base import GuidewaySlave
