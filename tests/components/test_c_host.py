@@ -24,12 +24,13 @@ STEPS = 10
 
 
 def printed_environment() -> dict[str, str]:
-    """The environment as the README's recipe takes it: the export lines of `host-env`."""
-    out = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "host-env"], check=True,
-                         capture_output=True, text=True).stdout
-    words = [shlex.split(line) for line in out.splitlines()]
-    assert all(w[0] == "export" for w in words), out
-    return dict(w[1].split("=", 1) for w in words)
+    """The environment as the README's recipe takes it: a shell that evals `host-env`'s output."""
+    command = f"{shlex.quote(sys.executable)} -m guideway_fmu.cli host-env"
+    script = f'eval "$({command})" && printf "%s\\0" "$LD_PRELOAD" "$PYTHONHOME" "$PYTHONPATH"'
+    out = subprocess.run(["bash", "-c", script], check=True, capture_output=True, text=True).stdout
+    values = out.split("\0")[:3]
+    assert all(values), out
+    return dict(zip(("LD_PRELOAD", "PYTHONHOME", "PYTHONPATH"), values))
 
 
 @pytest.fixture(scope="module")
@@ -109,3 +110,10 @@ def test_host_env_check_runs_an_fmu_in_the_c_host():
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "FeedKinematics.fmu ran in a C host with this environment and exited 0" in done.stderr
+
+
+def test_a_discarded_step_names_its_cause_on_stderr_with_logging_off(fmu_dir, c_host, tmp_path):
+    env = dict(printed_environment(), C_HOST_LOGGING="0")
+    run = host_env.run_in_c_host(c_host, fmu_dir / "ForceTable.fmu", env, work_dir=tmp_path)
+    assert run.status == 3  # fmi2DoStep returned fmi2Discard
+    assert "ForceTable c_host: table_file is empty" in run.stderr

@@ -4,9 +4,11 @@ pythonfmu 0.7 turns any Python exception raised inside an FMI call into fmi2Fata
 every FMU instance of the process. The components therefore never raise through FMI:
 
 * setters only store values; parameters and inputs are checked when they are used;
-* a bad parameter or input makes ``doStep`` log an error naming the variable and return
-  fmi2Discard (the only non-fatal failure status pythonfmu can return), leaving the state and
-  the outputs at their last valid values;
+* a bad parameter or input makes ``doStep`` log an error naming the variable (and print it on
+  stderr, since pythonfmu drops messages when logging is off) and return fmi2Discard (the only
+  non-fatal failure status pythonfmu can return; it reports fmi2Terminated with it, so a master
+  that follows the standard stops rather than repeating the step), leaving the state and the
+  outputs at their last valid values;
 * output getters evaluate the model from the current inputs (direct feedthrough) and, when that
   fails, log the error and return the last valid values, never NaN; in Initialization Mode they
   first set the internal state from the present parameters and inputs, as leaving it will, so
@@ -20,6 +22,7 @@ from __future__ import annotations
 
 import copy
 import math
+import sys
 from xml.etree.ElementTree import Element, SubElement
 
 from ..physics.dynamics import ContinuousModel
@@ -150,8 +153,14 @@ class GuidewaySlave(Fmi2Slave):
             self.check_inputs()
             return action()
         except Exception as exc:  # noqa: BLE001 - an exception here would be fmi2Fatal
-            self.log(f"{self.instance_name}: {exc}", Fmi2Status.error)
+            self._error(str(exc))
             return None
+
+    def _error(self, message: str) -> None:
+        """Log ``message`` as an error, and print it on stderr: pythonfmu 0.7 drops every message
+        when the host instantiated the FMU with logging off, and the cause must reach the user."""
+        self.log(f"{self.instance_name}: {message}", Fmi2Status.error)
+        print(f"{type(self).__name__} {self.instance_name}: {message}", file=sys.stderr)
 
     def _initialise_guarded(self) -> None:
         self._guarded(lambda: self.initialise() or True)
@@ -166,8 +175,7 @@ class GuidewaySlave(Fmi2Slave):
 
     def do_step(self, current_time: float, step_size: float) -> bool:
         if not (math.isfinite(step_size) and step_size > 0.0):
-            self.log(f"{self.instance_name}: communication step size must be > 0, got {step_size}",
-                     Fmi2Status.error)
+            self._error(f"communication step size must be > 0, got {step_size}")
             return False
         ok = self._guarded(lambda: self.advance(current_time, step_size) or True)
         self._outputs = None
@@ -182,8 +190,7 @@ class GuidewaySlave(Fmi2Slave):
                 self._last_valid = values
             elif values is not None:
                 bad = [k for k, v in values.items() if not math.isfinite(v)]
-                self.log(f"{self.instance_name}: outputs {bad} are not finite; "
-                         f"keeping the last valid values", Fmi2Status.error)
+                self._error(f"outputs {bad} are not finite; keeping the last valid values")
             self._outputs = self._last_valid
         return float(self._outputs.get(name, 0.0))
 
