@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 import stat
+import uuid
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
@@ -46,8 +47,12 @@ def xml_value(kind: str, value) -> str:
 
 def with_start_values(fmu: str | Path, out: str | Path, values: dict) -> Path:
     """Copy ``fmu`` to ``out`` with the start attribute of each variable in ``values`` (name ->
-    value) set to that value in its modelDescription.xml; every other entry is copied byte for
-    byte. Raises ValueError naming the FMU and the variable if it has no such variable."""
+    value) set to that value in its modelDescription.xml, and a guid of its own (derived from
+    the original's and the values: hosts such as libcosim keep one extracted FMU per guid, so
+    copies sharing it would all run with the first one's start values); every other entry is
+    copied byte for byte. Raises ValueError naming the FMU and the variable if it has no such
+    variable. An FMU that checks the guid at instantiation (compiled from C, say) no longer
+    instantiates: one of the reasons it cannot carry other start values."""
     fmu, out = Path(fmu), Path(out)
     check_entries(fmu)
     with zipfile.ZipFile(fmu) as src, zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as dst:
@@ -67,4 +72,6 @@ def _set_starts(fmu: Path, xml: bytes, values: dict) -> bytes:
             raise ValueError(f"{fmu}: {DESCRIPTION} has no variable {name!r} to set the start of")
         typed = variables[name][0]
         typed.set("start", xml_value(typed.tag, value))
+    starts = "\n".join(f"{name}={xml_value(variables[name][0].tag, values[name])}" for name in sorted(values))
+    root.set("guid", str(uuid.uuid5(uuid.NAMESPACE_URL, f"{root.get('guid')}\n{starts}")))
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True)
