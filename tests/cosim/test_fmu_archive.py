@@ -52,23 +52,24 @@ def test_the_master_extracts_no_fmu_with_an_unsafe_entry(fmu_dir, tmp_path, monk
     assert extracted == []
 
 
-def test_a_copy_with_start_values_starts_there_and_keeps_every_other_entry(fmu_dir, tmp_path):
-    source = fmu_dir / "FeedKinematics.fmu"
-    values = {"profile": "oscillating", "frequency": 40.0, "u_cmd": 0.5}
-    copy = fmu_archive.with_start_values(source, tmp_path / "Feed.fmu", values)
+@pytest.mark.parametrize("fmu, values, defaults", [
+    ("FeedKinematics", {"profile": "oscillating", "frequency": 40.0, "u_cmd": 0.5},
+     {"profile": "biharmonic", "frequency": 5.0, "u_cmd": 0.0}),
+    ("ContactEHL", {"interpolate_inputs": True}, {"interpolate_inputs": False}),
+    ("FrictionMixedEHL", {"rollers_per_groove": 18}, {"rollers_per_groove": 20})])
+def test_a_copy_with_start_values_starts_there_and_keeps_every_other_entry(fmu_dir, tmp_path, fmu,
+                                                                          values, defaults):
+    source = fmu_dir / f"{fmu}.fmu"
+    copy = fmu_archive.with_start_values(source, tmp_path / "copy.fmu", values)
     with zipfile.ZipFile(source) as a, zipfile.ZipFile(copy) as b:
         assert a.namelist() == b.namelist()
         assert all(a.read(n) == b.read(n) for n in a.namelist() if n != "modelDescription.xml")
-    instance = FmuInstance(copy, "Feed")
-    try:
-        assert {name: instance.get(name) for name in values} == values
-    finally:
-        instance.close()
-    original = FmuInstance(source, "Feed")
-    try:
-        assert original.get("profile") == "biharmonic" and original.get("frequency") == 5.0
-    finally:
-        original.close()
+    for path, expected in ((copy, values), (source, defaults)):
+        instance = FmuInstance(path, fmu)
+        try:
+            assert {name: instance.get(name) for name in values} == expected
+        finally:
+            instance.close()
 
 
 def test_a_start_value_of_a_missing_variable_is_refused(fmu_dir, tmp_path):
