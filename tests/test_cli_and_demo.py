@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fmpy import read_model_description
 
 from guideway_fmu import cli, demo, scenarios
 from guideway_fmu.physics import guideway
@@ -63,12 +64,16 @@ def test_cli_verify_json_meets_the_accuracy_target_on_a_short_loaded_run(fmu_dir
     assert "Carriage.y" in report["peak_error"]
 
 
-def test_cli_export_ssp_writes_a_package(fmu_dir, tmp_path, capsys):
-    out = tmp_path / "case.ssp"
-    assert cli.main(["export-ssp", str(SCENARIOS / "soleimanian2020_9000N_4500Hz_dry.toml"),
-                     "--fmus", str(fmu_dir), str(out)]) == 0
-    assert zipfile.is_zipfile(out)
-    assert "resources/ContactDryHertz.fmu" in zipfile.ZipFile(out).namelist()
+def test_cli_export_ssp_writes_a_package_baked_unless_told_not_to(fmu_dir, tmp_path, capsys):
+    scenario = str(SCENARIOS / "soleimanian2020_9000N_4500Hz_dry.toml")
+    for flags, name in (([], "baked.ssp"), (["--no-bake"], "plain.ssp")):
+        assert cli.main(["export-ssp", scenario, "--fmus", str(fmu_dir), str(tmp_path / name), *flags]) == 0
+        with zipfile.ZipFile(tmp_path / name) as zf:
+            assert "resources/ContactDryHertz.fmu" in zf.namelist()
+            (tmp_path / name).with_suffix(".fmu").write_bytes(zf.read("resources/VerticalDynamics.fmu"))
+    starts = {v.name: v.start for v in read_model_description(str(tmp_path / "baked.fmu")).modelVariables}
+    assert float(starts["load_amplitude"]) == 9000.0  # the scenario's load, 0 in the FMU as built
+    assert (tmp_path / "plain.fmu").read_bytes() == (fmu_dir / "VerticalDynamics.fmu").read_bytes()
 
 
 def test_cli_run_bad_scenario_is_a_clear_error(tmp_path, capsys):

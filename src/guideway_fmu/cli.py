@@ -206,6 +206,10 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("export-ssp", help="write the scenario as an SSP 1.0 package")
     _scenario_args(p)
     p.add_argument("out", type=Path, help="the .ssp file to write")
+    p.add_argument("--no-bake", action="store_true",
+                   help="pack the FMUs unchanged; the parameters are then only in the SSD's "
+                        "bindings, which fmpy.ssp ignores (default: each FMU copy starts at its "
+                        "instance's parameters)")
     p = sub.add_parser("diagnose", help="find, name and close the gap between a measured run and the model")
     p.add_argument("run_dir", type=Path, help="measured run: rig.toml + data.csv (docs/measured-run.md)")
     p.add_argument("--out", type=Path, required=True, help="output folder: diagnosis.json, fit.csv, report.html, plots")
@@ -249,7 +253,7 @@ def main(argv: list[str] | None = None) -> int:
             print(json.dumps(report, indent=2) if args.json else format_table(report))
         elif args.command == "export-ssp":
             from .cosim.ssp import export_ssp
-            print(export_ssp(_load(args), args.out))
+            print(export_ssp(_load(args), args.out, bake=not args.no_bake))
         elif args.command == "diagnose":
             from .diagnose.workflow import diagnose
             diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus)

@@ -4,8 +4,8 @@ compared with our own Jacobi master (master.simulate).
 The scenario starts at rest: feed velocity, displacement and velocity are 0 at t = 0. fmpy's
 first step sees 0.0 on every connected input (cosim/ssp.py's docstring); the other tools see
 the outputs at t = 0, which differ from 0 only in the contact loads, and the friction at u = 0 is
-0 whatever the loads: the same first step. fmpy cannot set String parameters, so its scenario
-keeps the default feed profile (biharmonic, with phases 0).
+0 whatever the loads: the same first step. The fmpy case keeps the default feed profile
+(biharmonic) with phases 0, and gets its parameters only from the baked FMUs.
 """
 import dataclasses
 import shutil
@@ -13,11 +13,15 @@ from pathlib import Path
 import xml.etree.ElementTree as ET
 import zipfile
 
+from fmpy import read_model_description
+
 import numpy as np
 import pytest
 from fmpy.ssp.simulation import simulate_ssp  # fmpy.ssp.simulate parses sys.argv on import
 
+from guideway_fmu import scenarios
 from guideway_fmu.cosim import master, ssp, system
+from test_fmu_archive import SYMLINK, with_entry  # the malicious FMU of the archive tests
 
 NS = {"ssd": ssp.SSD, "ssc": ssp.SSC, "ssv": ssp.SSV, "osp": ssp.OSP}
 BASE = {"Contact": {"preload": 8000.0}, "Rough": {"rollers_per_groove": 18}}
@@ -33,7 +37,7 @@ FMUS = {"Feed": "FeedKinematics", "Contact": "ContactEHL", "Carriage": "Vertical
 RTOL = 1e-11  # round-off: libcosim counts integer ns, its FMUs see t off by ~1e-19 s (worst seen 9e-14)
 
 
-def make(folder, fmu_dir, parameters):
+def make(folder, fmu_dir, parameters, bake=True):
     """Write the scenario (``parameters``: instance -> {name: value}), load it and export it."""
     b = system.Builder("ssp_test").experiment(start=0.0, stop=2e-4, step=1e-6, algorithm="jacobi")
     for inst, fmu in FMUS.items():
@@ -42,19 +46,19 @@ def make(folder, fmu_dir, parameters):
         b.connect(source, target)
     system.dump(b.system(check_fmus=False), folder / "ssp_test.toml")
     sys_ = system.load(folder / "ssp_test.toml", fmu_dir=fmu_dir)
-    return sys_, ssp.export_ssp(sys_, folder / "ssp_test.ssp")
+    return sys_, ssp.export_ssp(sys_, folder / "ssp_test.ssp", bake=bake)
 
 
 def outputs(sys_):
     return [f"{i}.{n}" for i, vs in sys_.variables.items() for n, v in vs.items() if v.causality == "output"]
 
 
-def run_fmpy(sys_, package):
+def run_fmpy(sys_, package, **options):
     """fmpy's rows: row k holds the values read after the step t_k -> t_k + h (here one row more
-    than steps: its summed t falls short of stop)."""
+    than steps: its summed t falls short of stop). No parameter set: the package carries them."""
     exp = sys_.experiment
     return simulate_ssp(str(package), start_time=exp.start, stop_time=exp.stop, step_size=exp.step,
-                        parameter_set=ssp.parameter_set(sys_))
+                        **options)
 
 
 def steps(sys_):
@@ -84,14 +88,16 @@ def test_ssd_structure(lc_case):
     with zipfile.ZipFile(package) as zf:
         names = zf.namelist()
         root = ET.fromstring(zf.read("SystemStructure.ssd"))
-    assert sorted(names) == ["SystemStructure.ssd", *sorted(f"resources/{f}.fmu" for f in set(FMUS.values()))]
+    assert sorted(names) == ["SystemStructure.ssd", "resources/ContactEHL.fmu", "resources/FeedKinematics.fmu",
+                             "resources/FrictionMixedEHL_Friction.fmu", "resources/FrictionMixedEHL_Rough.fmu",
+                             "resources/VerticalDynamics.fmu"]  # Friction and Rough: two variants
     assert root.tag == f"{{{ssp.SSD}}}SystemStructureDescription" and root.get("version") == "1.0"
     (system_el,) = root.findall("ssd:System", NS)
     comps = {c.get("name"): c for c in system_el.findall("ssd:Elements/ssd:Component", NS)}
     assert list(comps) == list(sys_.components)
-    for name, comp in comps.items():
-        assert comp.get("source") == f"resources/{sys_.components[name].fmu.name}"
-        assert comp.get("type") == "application/x-fmu-sharedlibrary"
+    assert {comp.get("type") for comp in comps.values()} == {"application/x-fmu-sharedlibrary"}
+    assert comps["Rough"].get("source") == "resources/FrictionMixedEHL_Rough.fmu"
+    assert comps["Carriage"].get("source") == "resources/VerticalDynamics.fmu"
     kinds = {(c.get("name"), c.get("kind"), c[0].tag.split("}")[1])
              for c in comps["Carriage"].findall("ssd:Connectors/ssd:Connector", NS)}
     assert ("F_contact", "input", "Real") in kinds and ("y", "output", "Real") in kinds
@@ -123,6 +129,53 @@ def test_ssd_validates_against_the_ssp_schema(lc_case):
     from fmpy.ssp.ssd import read_ssd  # validates against the SSP 1.0 XML schema
 
     assert read_ssd(str(lc_case[1])).system.name == "ssp_test"
+
+
+def test_every_real_connector_has_its_fmus_unit_declared_once_with_its_base_unit(lc_case):
+    from fmpy.ssp.ssd import read_ssd
+
+    sys_, package = lc_case
+    with zipfile.ZipFile(package) as zf:
+        root = ET.fromstring(zf.read("SystemStructure.ssd"))
+    connectors = root.findall("ssd:System/ssd:Elements/ssd:Component/ssd:Connectors/ssd:Connector", NS)
+    reals = [c for c in connectors if c[0].tag == f"{{{ssp.SSC}}}Real"]
+    owner = {id(c): comp.get("name") for comp in root.iter(f"{{{ssp.SSD}}}Component")
+             for c in comp.iter(f"{{{ssp.SSD}}}Connector")}
+    assert reals and all(c[0].get("unit") == sys_.unit(owner[id(c)], c.get("name")) for c in reals)
+    units = {u.get("name"): u.find("ssc:BaseUnit", NS).attrib for u in root.findall("ssd:Units/ssc:Unit", NS)}
+    assert set(units) == {c[0].get("unit") for c in reals}
+    assert units["N"] == {"kg": "1", "m": "1", "s": "-2"} and units["m"] == {"m": "1"}
+    assert units["Hz"] == {"s": "-1"}
+    parsed = {u.name: (u.kg, u.m, u.s) for u in read_ssd(str(package)).units}  # fmpy reads them back
+    assert parsed["N"] == (1, 1, -2) and len(parsed) == len(units)
+
+
+def test_baked_copies_start_at_their_instances_parameters_and_keep_every_other_entry(lc_case, fmu_dir):
+    sys_, package = lc_case
+    with zipfile.ZipFile(package) as zf:
+        for entry, fmu, values in (("ContactEHL.fmu", "ContactEHL", {"preload": 8000.0}),
+                                   ("FrictionMixedEHL_Rough.fmu", "FrictionMixedEHL", {"rollers_per_groove": 18}),
+                                   ("FrictionMixedEHL_Friction.fmu", "FrictionMixedEHL", {}),
+                                   ("VerticalDynamics.fmu", "VerticalDynamics", {})):
+            copy = sys_.path.parent / entry
+            copy.write_bytes(zf.read(f"resources/{entry}"))
+            original = fmu_dir / f"{fmu}.fmu"
+            if not values:  # nothing to bake: the file itself
+                assert copy.read_bytes() == original.read_bytes()
+                continue
+            starts = {v.name: v.start for v in read_model_description(str(copy)).modelVariables}
+            assert {k: type(v)(starts[k]) for k, v in values.items()} == values
+            with zipfile.ZipFile(copy) as a, zipfile.ZipFile(original) as b:
+                assert a.namelist() == b.namelist()
+                assert all(a.read(n) == b.read(n) for n in a.namelist() if n != "modelDescription.xml")
+
+
+def test_an_unbaked_package_packs_each_fmu_file_once_unchanged(fmu_dir, tmp_path):
+    sys_, package = make(tmp_path, fmu_dir, LIBCOSIM, bake=False)
+    with zipfile.ZipFile(package) as zf:
+        entries = sorted(n for n in zf.namelist() if n.startswith("resources/"))
+        assert entries == sorted(f"resources/{f}.fmu" for f in set(FMUS.values()))
+        assert all(zf.read(f"resources/{f}.fmu") == (fmu_dir / f"{f}.fmu").read_bytes() for f in FMUS.values())
 
 
 # -- runs --------------------------------------------------------------------------------------
@@ -180,6 +233,29 @@ def test_parameters_reach_fmpy(fmpy_case, fmpy_run):
     check_parameters_reached(time, fmpy_run, lambda t: 0.2919 * np.sin(w * t) + 0.0178 * np.sin(3 * w * t))
 
 
+def test_fmpy_runs_the_exported_9000N_scenario_loaded_as_our_master_does(fmu_dir, tmp_path):
+    """The shipped 9000 N, 4500 Hz scenario, 0.4 ms (100 steps of 4 us) under "jacobi", the
+    scheme fmpy runs, with the feed starting at rest (phases 0: fmpy feeds 0.0 to every input in
+    its first step and initialises the films with inputs at their start values, so a feed moving
+    at t = 0 would change the films of its first steps). Explicit Jacobi coupling of this stiff
+    contact grows away from the stabilised answer (docs/cosimulation.md): the check is that fmpy
+    runs the same system as our master, step for step, which holds to the last bit. Without the
+    baked FMUs fmpy ran the FMUs' defaults, unloaded."""
+    scenario = system.load(Path(scenarios.__file__).parent / "soleimanian2020_9000N_4500Hz.toml",
+                           fmu_dir=fmu_dir)
+    loaded = scenario.with_changes(algorithm="jacobi", stop=4e-4,
+                                   parameters={"Feed": {"phase1": 0.0, "phase2": 0.0}})
+    unloaded = loaded.with_changes(parameters={"Carriage": {"load_amplitude": 0.0}})
+    rows = run_fmpy(loaded, ssp.export_ssp(loaded, tmp_path / "loaded.ssp"))
+    n = steps(loaded)
+    expected = {k: v[1:n + 1] for k, v in master.simulate(loaded).recording.columns.items()}
+    names = list(expected)  # the scenario's recorded variables
+    assert_same({k: rows[k][:n] for k in names}, expected, names)
+    other = master.simulate(unloaded).recording.columns
+    for name in ("Carriage.y", "Contact.F_upper", "Contact.F_lower"):
+        assert np.abs(rows[name][:n] - other[name][1:n + 1]).max() > 0.5 * np.abs(expected[name]).max()
+
+
 # -- bad input ---------------------------------------------------------------------------------
 def test_export_into_a_missing_folder_names_it(lc_case, tmp_path):
     with pytest.raises(FileNotFoundError, match="no_such_folder"):
@@ -206,6 +282,49 @@ def test_export_onto_one_of_its_own_inputs_is_refused_and_leaves_it_intact(fmu_d
         with pytest.raises(ValueError, match=f"it is {what}, which the package is made from"):
             ssp.export_ssp(sys_, target)
         assert Path(target).read_bytes() == before
+
+
+@pytest.mark.parametrize("entry, mode", [("../../outside.txt", 0), ("/outside.txt", 0),
+                                         ("resources/link", SYMLINK)])
+def test_export_of_an_fmu_with_an_unsafe_entry_is_refused_naming_both(fmu_dir, tmp_path, entry, mode):
+    for fmu in set(FMUS.values()):
+        shutil.copy(fmu_dir / f"{fmu}.fmu", tmp_path)
+    sys_, _ = make(tmp_path, tmp_path, FMPY)
+    with_entry(fmu_dir / "ContactEHL.fmu", tmp_path / "ContactEHL.fmu", entry, mode)
+    for bake in (True, False):
+        with pytest.raises(ValueError, match=f"ContactEHL.fmu: archive entry '{entry}'"):
+            ssp.export_ssp(sys_, tmp_path / "bad.ssp", bake=bake)
+        assert not (tmp_path / "bad.ssp").exists()
+
+
+def test_a_baked_fmu_that_does_not_start_at_its_start_values_is_refused(fmpy_case, tmp_path, monkeypatch):
+    """An FMU with start values built into its code (here: the XML left as it was, as such an
+    FMU would act) would run the package with other parameters, silently."""
+    monkeypatch.setattr(ssp, "with_start_values", lambda fmu, out, values: shutil.copy(fmu, out))
+    with pytest.raises(ValueError, match="Feed: .*FeedKinematics.fmu starts phase1 at 2.0588 whatever "
+                                         "the start value in its modelDescription.xml \\(0.0 baked\\)"):
+        ssp.export_ssp(fmpy_case[0], tmp_path / "x.ssp")
+
+
+def test_a_unit_two_fmus_define_differently_is_refused_naming_both(fmu_dir, tmp_path):
+    """(A unit an FMU uses without defining it is refused when the scenario is loaded: fmpy's
+    validation of the modelDescription.)"""
+    new = '<Unit name="N"><BaseUnit kg="1" m="1" s="-2" factor="1000.0"/></Unit>'  # kN named N
+    for fmu in set(FMUS.values()):
+        shutil.copy(fmu_dir / f"{fmu}.fmu", tmp_path)
+    sys_, _ = make(tmp_path, tmp_path, FMPY)
+    with zipfile.ZipFile(fmu_dir / "ContactEHL.fmu") as src, \
+            zipfile.ZipFile(tmp_path / "ContactEHL.fmu", "w") as dst:
+        for info in src.infolist():
+            data = src.read(info)
+            if info.filename == "modelDescription.xml":
+                data = data.replace(b'<Unit name="N">\n\t\t\t<BaseUnit kg="1" m="1" s="-2"/>\n\t\t</Unit>',
+                                    new.encode())
+                assert new.encode() in data
+            dst.writestr(info, data)
+    with pytest.raises(ValueError, match="unit 'N' has the base unit .*'factor': '1000.0'.* in "
+                                         ".*ContactEHL.fmu but .* in .*VerticalDynamics.fmu"):
+        ssp.export_ssp(sys_, tmp_path / "x.ssp")
 
 
 def test_parameter_set_refuses_what_fmpy_would_get_wrong(lc_case, fmpy_case):

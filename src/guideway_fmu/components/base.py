@@ -16,13 +16,18 @@ every FMU instance of the process. The components therefore never raise through 
 
 The modelDescription written by :meth:`to_xml` adds what pythonfmu leaves out: units with base
 units for every Real variable, and ModelStructure with Outputs and InitialUnknowns listing the
-inputs each output depends on.
+inputs each output depends on. An instance starts its parameters and inputs at the start values
+of the modelDescription.xml it is extracted with (pythonfmu alone starts them at the class's
+defaults, whatever the XML says), so a copy of the FMU with other start values written into its
+XML (``export-ssp``'s baked parameters) starts at those.
 """
 from __future__ import annotations
 
 import copy
 import math
 import sys
+from pathlib import Path
+from xml.etree import ElementTree
 from xml.etree.ElementTree import Element, SubElement
 
 from ..physics.dynamics import ContinuousModel
@@ -58,11 +63,13 @@ class GuidewaySlave(Fmi2Slave):
         self._last_valid: dict[str, float] = {}
         self._model = None
         self._initialising = False
+        self._described = _described_starts(self.resources)
 
     # -- registration -------------------------------------------------------------------
     def parameter(self, name: str, start, unit: str | None, description: str) -> None:
         """A tunable parameter: Real (with ``unit``), Boolean (bool start), Integer (int start) or
-        String (str start)."""
+        String (str start); the modelDescription's start value replaces ``start`` where there is one."""
+        start = self._start(name, start)
         setattr(self, name, start)
         kind = (String if isinstance(start, str) else Boolean if isinstance(start, bool)
                 else Integer if isinstance(start, int) else Real)
@@ -75,8 +82,9 @@ class GuidewaySlave(Fmi2Slave):
 
     def input(self, name: str, start: float, unit: str, description: str,
               non_negative: bool = False) -> None:
-        """A Real input; ``non_negative`` inputs are refused below zero."""
-        setattr(self, name, float(start))
+        """A Real input; ``non_negative`` inputs are refused below zero; the modelDescription's
+        start value replaces ``start`` where there is one."""
+        setattr(self, name, self._start(name, float(start)))
         self._inputs.append(name)
         if non_negative:
             self._non_negative.append(name)
@@ -94,6 +102,16 @@ class GuidewaySlave(Fmi2Slave):
             getter=lambda: self._output(name)))
         self._units[name] = unit
         self._depends[name] = tuple(depends)
+
+    def _start(self, name: str, default):
+        """The start value of ``name`` in the modelDescription (schema-valid XML text: xs:double,
+        xs:int, xs:boolean or a string), of the type of ``default``; ``default`` without one."""
+        text = self._described.get(name)
+        if text is None or isinstance(default, str):
+            return default if text is None else text
+        if isinstance(default, bool):
+            return text in ("true", "1")
+        return type(default)(text)
 
     def _set(self, name, value, parameter=False):
         setattr(self, name, value)
@@ -238,3 +256,16 @@ class GuidewaySlave(Fmi2Slave):
                 SubElement(node, "Unknown", index=str(index[name]),
                            dependencies=" ".join(str(index[d]) for d in deps))
         return root
+
+
+def _described_starts(resources: str | None) -> dict[str, str]:
+    """Start values (XML text) by variable name of the modelDescription.xml beside the FMU's
+    ``resources`` folder; none when the class is instantiated outside an extracted FMU (as the
+    build does)."""
+    if resources is None or Path(resources).name != "resources":
+        return {}
+    xml = Path(resources).parent / "modelDescription.xml"
+    if not xml.is_file():
+        return {}
+    return {v.get("name"): typed.get("start") for v in ElementTree.parse(xml).getroot().iter("ScalarVariable")
+            for typed in v if typed.get("start") is not None}

@@ -16,6 +16,8 @@ from fmpy.fmi2 import (FMU2Slave, fmi2Boolean, fmi2CallbackAllocateMemoryTYPE,
 from fmpy.fmi2 import calloc, free
 from fmpy.logging import addLoggerProxy
 
+from .fmu_archive import check_entries
+
 _CTYPES = {"Real": fmi2Real, "Integer": fmi2Integer, "Boolean": fmi2Boolean, "Enumeration": fmi2Integer}
 _STATUS = ["ok", "warning", "discard", "error", "fatal", "pending"]
 LOG_LINES = 50  # log messages kept per instance
@@ -49,6 +51,7 @@ class FmuInstance:
         self.fmi_time = 0.0
         #: set once a call returned fmi2Fatal: FMI then forbids any further call
         self.fatal = False
+        check_entries(self.path)
         self._unzip = extract(str(self.path))
         try:
             self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=self._unzip,

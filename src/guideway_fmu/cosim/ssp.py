@@ -4,11 +4,27 @@ The package is a zip holding
 
 * ``SystemStructure.ssd``: one ``ssd:System`` with an ``ssd:Component`` per instance
   (``source="resources/<file>.fmu"``) whose Connectors are its outputs, parameters,
-  calculated parameters and *connected* inputs (typed ``ssc:Real/Integer/Boolean/String``),
-  whose ``parameters`` are an inline ``ssv:ParameterSet``; the ``system.connections`` (tangents
-  are a notion of our stabilised master, not of SSP); ``ssd:DefaultExperiment`` with start and
-  stop time [s] and the OSP annotation with the macro step [s];
-* ``resources/<file>.fmu``: each FMU file once, however many instances share it.
+  calculated parameters and *connected* inputs (typed ``ssc:Real/Integer/Boolean/String``, a
+  Real with its unit), whose ``parameters`` are an inline ``ssv:ParameterSet``; the
+  ``system.connections`` (tangents are a notion of our stabilised master, not of SSP);
+  ``ssd:Units``, each unit of a connector once with its SI base units (from the FMUs'
+  UnitDefinitions); ``ssd:DefaultExperiment`` with start and stop time [s] and the OSP
+  annotation with the macro step [s];
+* ``resources/<file>.fmu``: the FMUs. Baked (the default): an instance with parameters gets a
+  copy of its FMU whose modelDescription.xml start values are those parameters, every other
+  entry copied unchanged; instances of one FMU file with equal parameters share one copy, and
+  where they differ each variant is ``resources/<file stem>_<first instance>.fmu``. Unbaked:
+  each FMU file once, as it is, however many instances share it.
+
+Why bake by default: the parameter bindings are the SSP way of giving parameters, but a runner
+may ignore them without a word (fmpy does), and then the package runs another system, unloaded
+instead of loaded. A baked package gives the scenario's answer in any runner that starts its
+FMUs from their start values (what FMI requires of an FMU), bindings or not; the bindings stay,
+with the same values, for the tools that apply them. Our FMUs start from the start values of the
+modelDescription.xml beside their extracted ``resources/`` (components/base.py); the export
+instantiates every baked copy and refuses one that does not start at its baked values (a
+third-party FMU with built-in start values, or one of ours built before they read them).
+``bake=False`` (``export-ssp --no-bake``) packs the FMU files unchanged.
 
 It describes a fixed-step run with ``experiment.step`` whatever ``experiment.algorithm`` says;
 tangents, step-size control, recording and plots are not exported.
@@ -32,10 +48,14 @@ libcosim (``CosimExecution.from_ssp_file``)
     is the value computed in initialization mode, so it differs when the source's outputs change
     at exitInitializationMode (ContactEHL sets its films there: friction fed by it at t = start).
 fmpy (``fmpy.ssp.simulation.simulate_ssp``)
-    Ignores the bindings and the annotation: pass ``parameter_set(system)`` and start/stop/step.
-    Cannot set String variables. An input connector without a connection is silently fed by the
-    source of the input connector listed before it (or fails): every connector of kind input
-    must be connected, which is why only connected inputs are exported.
+    Ignores the bindings, the default experiment and the annotation: pass start/stop/step, and
+    for an unbaked package ``parameter_set(system)`` (it cannot set String variables: only a
+    baked package gives them to fmpy). It extracts each FMU whole, so our baked FMUs find their
+    modelDescription.xml (``fmpy.simulate_fmu`` extracts only ``resources/`` and ``binaries/``:
+    a baked FMU run there alone starts from its class's defaults). An input connector without a
+    connection is silently fed by the source of the input connector listed before it (or
+    fails): every connector of kind input must be connected, which is why only connected inputs
+    are exported.
     No initialisation of inputs: they keep their start values (or the parameter set's) through
     initialization mode, and every connected input is 0.0 in the first step. After that the same
     Jacobi scheme; the row labelled t holds the values read after the step t -> t + h, and t
@@ -46,14 +66,19 @@ fmpy (``fmpy.ssp.simulation.simulate_ssp``)
 """
 from __future__ import annotations
 
+import re
+import tempfile
 import zipfile
 from pathlib import Path
 
 import numpy as np
 from xml.etree import ElementTree as ET
 
+from fmpy import read_model_description
 from fmpy.ssp.ssd import Parameter, ParameterSet
 
+from .fmu_archive import check_entries, with_start_values, xml_value
+from .fmu_instance import FmuInstance
 from .system import System
 
 SSD = "http://ssp-standard.org/SSP1/SystemStructureDescription"
@@ -69,12 +94,15 @@ _TYPES = {"Real": "Real", "Integer": "Integer", "Boolean": "Boolean", "String": 
           "Enumeration": "Integer"}  # FMI 2 enumerations are integers; libcosim rejects ssc:Enumeration
 
 
-def export_ssp(system: System, out: str | Path) -> Path:
+def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
     """Write ``system`` as an SSP 1.0 package to ``out`` (a new ``.ssp`` zip); returns its path.
+    ``bake``: the FMUs carry the parameters as start values (module doc).
 
     Raises FileNotFoundError naming the file if ``out``'s folder or an FMU file does not exist,
-    ValueError if two different FMU files share a file name or ``out`` is one of the scenario's
-    FMUs or its description (writing it would destroy what it packs).
+    ValueError if two different FMU files share a file name, ``out`` is one of the scenario's
+    FMUs or its description (writing it would destroy what it packs), an FMU has an unsafe
+    archive entry (fmu_archive.check_entries), two FMUs define one unit differently, or a baked
+    FMU does not start at its baked values.
     """
     out = Path(out)
     if not out.parent.is_dir():
@@ -93,11 +121,71 @@ def export_ssp(system: System, out: str | Path) -> Path:
         if other.resolve() != comp.fmu.resolve():
             raise ValueError(f"{comp.name}: FMU files {other} and {comp.fmu} share the name "
                              f"{comp.fmu.name} and cannot both go to resources/")
-    ssd = ET.tostring(_ssd(system), encoding="UTF-8", xml_declaration=True)
-    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
-        zf.writestr("SystemStructure.ssd", ssd)
-        for name, path in sources.items():
-            zf.write(path, f"resources/{name}")
+    for path in sources.values():
+        check_entries(path)
+    entries = _entries(system, bake)
+    ssd = ET.tostring(_ssd(system, entries), encoding="UTF-8", xml_declaration=True)
+    with tempfile.TemporaryDirectory(prefix="guideway_fmu_ssp_") as tmp:
+        files = {}
+        for inst, (entry, values) in entries.items():
+            if entry not in files:
+                comp = system.components[inst]
+                files[entry] = _baked(inst, comp.fmu, Path(tmp) / entry, values) if values else comp.fmu
+        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+            zf.writestr("SystemStructure.ssd", ssd)
+            for entry, path in files.items():
+                zf.write(path, f"resources/{entry}")
+    return out
+
+
+def _entries(system: System, bake: bool) -> dict[str, tuple[str, dict]]:
+    """Instance -> (the file name of its FMU under resources/, the parameters baked into it)."""
+    keys = {inst: tuple(sorted(comp.parameters.items())) if bake else ()
+            for inst, comp in system.components.items()}
+    variants: dict[str, dict[tuple, str]] = {}  # FMU file name -> {parameters: first instance}
+    for inst, comp in system.components.items():
+        variants.setdefault(comp.fmu.name, {}).setdefault(keys[inst], inst)
+    entries, owners = {}, {}
+    for inst, comp in system.components.items():
+        key = keys[inst]
+        first = variants[comp.fmu.name][key]
+        if len(variants[comp.fmu.name]) == 1:
+            entry = comp.fmu.name
+        elif re.fullmatch(r"[A-Za-z0-9_.-]+", first):
+            entry = f"{comp.fmu.stem}_{first}.fmu"
+        else:
+            raise ValueError(f"{first}: its parameters differ from those of another instance of "
+                             f"{comp.fmu.name}, so it needs a copy named after it, and an instance "
+                             "name in a file name may hold only letters, digits and _ . -")
+        if owners.setdefault(entry, (comp.fmu.name, key)) != (comp.fmu.name, key):
+            raise ValueError(f"{inst}: its FMU would be resources/{entry}, which another FMU "
+                             "already is: rename the instance or the FMU file")
+        entries[inst] = entry, dict(key)
+    return entries
+
+
+def _baked(inst: str, fmu: Path, out: Path, values: dict) -> Path:
+    """A copy of ``fmu`` at ``out`` starting at ``values``, checked by instantiating it as
+    ``inst`` and reading them back: an FMU that ignores its modelDescription's start values
+    would otherwise run the package with others, silently."""
+    with_start_values(fmu, out, values)
+    try:
+        instance = FmuInstance(out, inst)
+    except Exception as exc:  # noqa: BLE001 - fmpy raises many kinds for an FMU it cannot load
+        raise ValueError(f"{inst}: {fmu} with its start values baked in does not instantiate "
+                         f"({exc}): export with --no-bake and give the parameters to the runner") from exc
+    try:
+        for name, value in values.items():
+            started = instance.get(name)
+            if started != value:
+                raise ValueError(
+                    f"{inst}: {fmu} starts {name} at {started!r} whatever the start value in its "
+                    f"modelDescription.xml ({value!r} baked): it cannot carry the scenario's "
+                    "parameters. Rebuild it (guideway-fmu build) if it is one of ours built "
+                    "before our FMUs read their start values, or export with --no-bake and "
+                    "give the parameters to the runner")
+    finally:
+        instance.close()
     return out
 
 
@@ -122,21 +210,25 @@ def parameter_set(system: System) -> ParameterSet:
     return ParameterSet(name="parameters", parameters=params)
 
 
-def _ssd(system: System) -> ET.Element:
+def _ssd(system: System, entries: dict[str, tuple[str, dict]]) -> ET.Element:
     root = ET.Element(f"{{{SSD}}}SystemStructureDescription", version="1.0", name=system.name)
     sys_el = ET.SubElement(root, f"{{{SSD}}}System", name=system.name)
     if system.description:
         sys_el.set("description", system.description)
     elements = ET.SubElement(sys_el, f"{{{SSD}}}Elements")
     connected = {(c.target, c.input) for c in system.connections}
+    units: dict[str, dict] = {}  # unit -> {instance with a connector in it: None}
     for inst, comp in system.components.items():
         el = ET.SubElement(elements, f"{{{SSD}}}Component", name=inst,
-                           source=f"resources/{comp.fmu.name}", type="application/x-fmu-sharedlibrary")
+                           source=f"resources/{entries[inst][0]}", type="application/x-fmu-sharedlibrary")
         connectors = ET.SubElement(el, f"{{{SSD}}}Connectors")
         for v in system.variables[inst].values():
             if v.causality in _KINDS and (v.causality != "input" or (inst, v.name) in connected):
                 c = ET.SubElement(connectors, f"{{{SSD}}}Connector", name=v.name, kind=v.causality)
-                ET.SubElement(c, f"{{{SSC}}}{_TYPES[v.type]}")
+                typed = ET.SubElement(c, f"{{{SSC}}}{_TYPES[v.type]}")
+                if v.type == "Real" and system.unit(inst, v.name):
+                    typed.set("unit", system.unit(inst, v.name))
+                    units.setdefault(system.unit(inst, v.name), {})[inst] = None
         if comp.parameters:
             binding = ET.SubElement(ET.SubElement(el, f"{{{SSD}}}ParameterBindings"),
                                     f"{{{SSD}}}ParameterBinding")
@@ -146,12 +238,16 @@ def _ssd(system: System) -> ET.Element:
             for name, value in comp.parameters.items():
                 kind = _TYPES[system.variables[inst][name].type]
                 p = ET.SubElement(parameters, f"{{{SSV}}}Parameter", name=name)
-                ET.SubElement(p, f"{{{SSV}}}{kind}", value=_text(kind, value))
+                ET.SubElement(p, f"{{{SSV}}}{kind}", value=xml_value(kind, value))
     if system.connections:
         connections = ET.SubElement(sys_el, f"{{{SSD}}}Connections")
         for c in system.connections:
             ET.SubElement(connections, f"{{{SSD}}}Connection", startElement=c.source,
                           startConnector=c.output, endElement=c.target, endConnector=c.input)
+    if units:
+        declared = ET.SubElement(root, f"{{{SSD}}}Units")
+        for name, base in _base_units(system, units).items():
+            ET.SubElement(ET.SubElement(declared, f"{{{SSC}}}Unit", name=name), f"{{{SSC}}}BaseUnit", base)
     exp = system.experiment
     default = ET.SubElement(root, f"{{{SSD}}}DefaultExperiment", startTime=repr(exp.start),
                             stopTime=repr(exp.stop))
@@ -163,10 +259,39 @@ def _ssd(system: System) -> ET.Element:
     return root
 
 
-def _text(kind: str, value) -> str:
-    if kind == "Boolean":
-        return "true" if value else "false"
-    return repr(float(value)) if kind == "Real" else str(value)
+_BASE = ("kg", "m", "s", "A", "K", "mol", "cd", "rad", "factor", "offset")
+
+
+def _base_units(system: System, used: dict[str, dict]) -> dict[str, dict[str, str]]:
+    """The SSD's units: each of ``used`` (unit -> the instances with a connector in it) with the
+    attributes of its SI base unit, as each of those FMUs defines it (every unit an FMU uses is
+    among its UnitDefinitions: fmpy's validation refused it at loading otherwise). Raises
+    ValueError naming both FMUs and the unit if two define it differently."""
+    defined: dict[Path, dict] = {}
+    bases = {}
+    for unit, instances in used.items():
+        for inst in instances:
+            fmu = system.components[inst].fmu
+            if fmu not in defined:
+                defined[fmu] = _unit_definitions(fmu)
+            first, where = bases.setdefault(unit, (defined[fmu][unit], fmu))
+            if first != defined[fmu][unit]:
+                raise ValueError(f"unit {unit!r} has the base unit {first} in {where} but "
+                                 f"{defined[fmu][unit]} in {fmu}: an SSD defines a unit once")
+    return {unit: base for unit, (base, _) in bases.items()}
+
+
+def _unit_definitions(fmu: Path) -> dict[str, dict[str, str]]:
+    """An FMU's UnitDefinitions: unit -> the attributes of its base unit other than the
+    defaults (exponents 0, factor 1, offset 0); none for a unit without a base unit, which SSP
+    (where a unit needs one) then reads as a number without dimension."""
+    units = {}
+    for unit in read_model_description(str(fmu)).unitDefinitions:
+        base = unit.baseUnit
+        units[unit.name] = {} if base is None else {
+            k: xml_value("Real" if k in ("factor", "offset") else "Integer", getattr(base, k))
+            for k in _BASE if getattr(base, k) != (1.0 if k == "factor" else 0)}
+    return units
 
 
 def run_libcosim(package, names, steps):
