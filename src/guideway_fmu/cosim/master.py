@@ -115,11 +115,7 @@ class Bus:
             write([values[s] for s in sources])
 
     def do_step(self, name: str, t: float, h: float) -> None:
-        try:
-            self.instances[name].do_step(t, h)
-        except FMICallException as exc:
-            exc.instance, exc.time = name, t
-            raise
+        self.instances[name].do_step(t, h)
 
     def connected_inputs(self):
         return self._sources.items()
@@ -174,36 +170,28 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     links = algorithm_class.links(system)
     exchanged = ({(c.source, c.output) for c in system.connections}
                  | algorithm_class.exchanged(system))
-    settings = algorithm_class.settings(system)
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
                         system.record_interval)
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
     instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
     try:
-        for name in order(system):  # initialise sources first: inputs at t0 from their outputs
+        for name in order(system):
             comp = system.components[name]
             try:
                 instances[name] = FmuInstance(comp.fmu, name)
             except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
-                raise SimulationError(f"{system.name}: cannot instantiate {name} from {comp.fmu}: "
-                                      f"{exc}", result) from exc
+                raise SimulationError(f"{system.name}: cannot instantiate {name} from "
+                                      f"{comp.fmu}: {exc}", result) from exc
         bus = Bus(system, instances, exchanged, {tuple(r.split(".", 1)) for r in record}, links)
-        for name in order(system):
-            inst = instances[name]
-            inst.fmu.setupExperiment(startTime=exp.start, stopTime=exp.stop)
-            inst.fmu.enterInitializationMode()
-            for key, value in {**system.components[name].parameters,
-                               **settings.get(name, {})}.items():
-                inst.set(key, value)
-            _write_available(bus, name)
-            inst.fmu.exitInitializationMode()
-            bus.read_outputs(name)
-        for name in instances:
-            bus.read_outputs(name)
+        _initialise(system, bus, algorithm_class.settings(system))
         result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
-        for w in watchers:
-            w.started(system, bus)
+        try:
+            for w in watchers:
+                w.started(system, bus)
+        except FMICallException as exc:
+            exc.time = exp.start
+            raise
         _run(exp, algorithm_class(bus, system), bus, watchers, result)
     except FMICallException as exc:
         if exc.status == FATAL:  # no call into any instance after fmi2Fatal
@@ -212,15 +200,35 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
         failing = getattr(exc, "instance", None)
         logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
                          if failing is None or n == failing)
-        when = f"at t = {exc.time:.9g} s" if hasattr(exc, "time") else "during initialisation"
-        result.error = f"{system.name}: FMU instance {failing!r} failed {when}: {exc}\n{logs}"
-        result.recording = recorder.recording()
+        result.error = (f"{system.name}: FMU instance {failing!r} failed {_when(exc)}: "
+                        f"{exc}\n{logs}")
         raise SimulationError(result.error, result) from exc
     finally:
         for inst in instances.values():
             inst.close()
-    result.recording = recorder.recording()
+        result.recording = recorder.recording()
     return result
+
+
+def _when(exc) -> str:
+    """Where the run was when ``exc`` came: the time it carries [s], else initialisation."""
+    t = getattr(exc, "time", None)
+    return "during initialisation" if t is None else f"at t = {t:.9g} s"
+
+
+def _initialise(system: System, bus: Bus, settings: dict) -> None:
+    """Initialise every instance, sources first (inputs at start from their outputs), with the
+    scenario's parameters and the algorithm's ``settings``."""
+    exp = system.experiment
+    for name in order(system):
+        inst = bus.instances[name]
+        inst.enter_initialisation(exp.start, {**system.components[name].parameters,
+                                              **settings.get(name, {})}, exp.stop)
+        _write_available(bus, name)
+        inst.exit_initialisation()
+        bus.read_outputs(name)
+    for name in bus.instances:
+        bus.read_outputs(name)
 
 
 def _write_available(bus: Bus, name: str) -> None:
@@ -231,10 +239,11 @@ def _write_available(bus: Bus, name: str) -> None:
 
 
 def _run(exp, algorithm, bus, watchers, result) -> None:
+    """Step from start to stop; an FMICallException leaves with ``time`` [s]: that of the
+    values concerned (the end of the step for a non-finite output, the step's start else)."""
     t, h, span = exp.start, exp.step, exp.stop - exp.start
     eps = 1e-9 * exp.step
     fmi0, wall0 = bus.fmi_time(), time.perf_counter()
-    steps = rejected = 0
     gc_was_on = gc.isenabled()
     gc.disable()  # the loop makes no reference cycles; full collections would cost ms each
     try:
@@ -242,22 +251,25 @@ def _run(exp, algorithm, bus, watchers, result) -> None:
             h_try = min(h, exp.stop - t)
             try:
                 accepted, h_next = algorithm.step(t, h_try)
-            except NonFiniteOutput as exc:
-                exc.time = t + h_try  # read after the step to it
+            except FMICallException as exc:
+                exc.time = t + h_try if isinstance(exc, NonFiniteOutput) else t
                 raise
             if not accepted:
-                rejected += 1
+                result.rejected += 1
                 h = h_next
                 continue
-            steps += 1
+            result.steps += 1
             t = exp.start + span if exp.stop - (t + h_try) <= eps else t + h_try
             h = h_next if exp.tolerance > 0 else exp.step
-            for w in watchers:
-                w.stepped(t, bus)
+            try:
+                for w in watchers:
+                    w.stepped(t, bus)
+            except FMICallException as exc:  # a recorded-only output at t
+                exc.time = t
+                raise
     finally:
         if gc_was_on:
             gc.enable()
-        result.steps, result.rejected = steps, rejected
         result.wall_time = time.perf_counter() - wall0
         result.fmi_time = bus.fmi_time() - fmi0
         for w in watchers:
