@@ -11,6 +11,7 @@ from __future__ import annotations
 import gc
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
@@ -160,10 +161,12 @@ def _recorded(system: System) -> list[str]:
             for v, var in vs.items() if var.causality == "output" and var.type != "String"]
 
 
-def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = ()) -> Result:
+def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = (),
+             results: str | Path | None = None) -> Result:
     """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
     an FMU fails a step that cannot be retried. ``observers`` are notified besides the recorder
-    (and the progress bar when ``progress``)."""
+    (and the progress bar when ``progress``). With ``results`` the recording streams to that CSV
+    file as it is taken (recording.py)."""
     exp = system.experiment
     algorithm_class = ALGORITHMS[exp.algorithm]
     record = _recorded(system)
@@ -171,7 +174,7 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     exchanged = ({(c.source, c.output) for c in system.connections}
                  | algorithm_class.exchanged(system))
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
-                        system.record_interval)
+                        system.record_interval, results)
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
     instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
@@ -206,6 +209,7 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     finally:
         for inst in instances.values():
             inst.close()
+        recorder.close()
         result.recording = recorder.recording()
     return result
 
