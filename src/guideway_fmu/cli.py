@@ -5,6 +5,7 @@ import argparse
 import json
 import math
 import re
+import signal
 import sys
 from fractions import Fraction
 from pathlib import Path
@@ -259,8 +260,13 @@ def main(argv: list[str] | None = None) -> int:
             print(_wear(args))
     except (ValueError, OSError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
         # EHLConvergenceError, files that cannot be read or written
-        print(f"guideway-fmu {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        signum = getattr(exc, "signal", None)  # a run stopped by SIGINT or SIGTERM
+        print(f"guideway-fmu {args.command}: {'error: ' if signum is None else ''}{exc}",
+              file=sys.stderr)
+        return 2 if signum is None else 128 + signum  # the shell's status for a signal
+    except KeyboardInterrupt:  # Ctrl-C outside a run
+        print(f"guideway-fmu {args.command}: interrupted", file=sys.stderr)
+        return 128 + signal.SIGINT
     return 0
 
 

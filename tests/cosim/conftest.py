@@ -5,6 +5,8 @@ import pytest
 from pythonfmu.builder import FmuBuilder
 
 FAULTY = '''
+import time
+
 from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
 
 
@@ -12,7 +14,8 @@ class Faulty(Fmi2Slave):
     """x = t, with the fault the parameter `fault` names (any other value: none):
     "raise": the doStep that starts at 5 ms raises;
     "get": after that doStep, reading x raises;
-    "nan": the doStep that ends at 5 ms outputs NaN with status OK."""
+    "nan": the doStep that ends at 5 ms outputs NaN with status OK;
+    "slow": every doStep takes 10 ms of wall time."""
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -31,6 +34,8 @@ class Faulty(Fmi2Slave):
         self.late = current_time >= 0.005 - 1e-12
         if self.fault == "raise" and self.late:
             raise RuntimeError("the faulty model broke at 5 ms")
+        if self.fault == "slow":
+            time.sleep(0.01)
         self.x = float("nan") if self.fault == "nan" and end >= 0.005 - 1e-12 else end
         return True
 '''

@@ -18,6 +18,7 @@ from fmpy.fmi1 import FMICallException
 
 from .algorithms import ALGORITHMS, order
 from .fmu_instance import ERROR, FATAL, FmuInstance
+from .interrupts import StopRequested, StopRequests
 from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording
 from .system import System
@@ -47,11 +48,12 @@ class Result:
 
 
 class SimulationError(RuntimeError):
-    """A run that stopped; ``result`` holds what was recorded until then."""
+    """A run that stopped; ``result`` holds what was recorded until then, ``signal`` the signal
+    (SIGINT, SIGTERM) that stopped it, None when an FMU failed."""
 
-    def __init__(self, message: str, result: Result):
+    def __init__(self, message: str, result: Result, signal: int | None = None):
         super().__init__(message)
-        self.result = result
+        self.result, self.signal = result, signal
 
 
 class NonFiniteOutput(FMICallException):
@@ -164,9 +166,10 @@ def _recorded(system: System) -> list[str]:
 def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = (),
              results: str | Path | None = None) -> Result:
     """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
-    an FMU fails a step that cannot be retried. ``observers`` are notified besides the recorder
-    (and the progress bar when ``progress``). With ``results`` the recording streams to that CSV
-    file as it is taken (recording.py)."""
+    an FMU fails a step that cannot be retried or SIGINT/SIGTERM came (the run stops between
+    steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
+    when ``progress``). With ``results`` the recording streams to that CSV file as it is taken
+    (recording.py)."""
     exp = system.experiment
     algorithm_class = ALGORITHMS[exp.algorithm]
     record = _recorded(system)
@@ -178,40 +181,45 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
     instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
-    try:
-        for name in order(system):
-            comp = system.components[name]
-            try:
-                instances[name] = FmuInstance(comp.fmu, name)
-            except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
-                raise SimulationError(f"{system.name}: cannot instantiate {name} from "
-                                      f"{comp.fmu}: {exc}", result) from exc
-        bus = Bus(system, instances, exchanged, {tuple(r.split(".", 1)) for r in record}, links)
-        _initialise(system, bus, algorithm_class.settings(system))
-        result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
+    with StopRequests() as stops:  # also while the instances are closed
         try:
-            for w in watchers:
-                w.started(system, bus)
+            for name in order(system):
+                comp = system.components[name]
+                try:
+                    instances[name] = FmuInstance(comp.fmu, name)
+                except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
+                    raise SimulationError(f"{system.name}: cannot instantiate {name} from "
+                                          f"{comp.fmu}: {exc}", result) from exc
+                stops.check(None)
+            bus = Bus(system, instances, exchanged, {tuple(r.split(".", 1)) for r in record}, links)
+            _initialise(system, bus, algorithm_class.settings(system), stops)
+            result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
+            try:
+                for w in watchers:
+                    w.started(system, bus)
+            except FMICallException as exc:
+                exc.time = exp.start
+                raise
+            _run(exp, algorithm_class(bus, system), bus, watchers, result, stops)
         except FMICallException as exc:
-            exc.time = exp.start
-            raise
-        _run(exp, algorithm_class(bus, system), bus, watchers, result)
-    except FMICallException as exc:
-        if exc.status == FATAL:  # no call into any instance after fmi2Fatal
+            if exc.status == FATAL:  # no call into any instance after fmi2Fatal
+                for inst in instances.values():
+                    inst.fatal = True
+            failing = getattr(exc, "instance", None)
+            logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
+                             if failing is None or n == failing)
+            result.error = (f"{system.name}: FMU instance {failing!r} failed {_when(exc)}: "
+                            f"{exc}\n{logs}")
+            raise SimulationError(result.error, result) from exc
+        except StopRequested as exc:
+            result.error = f"{system.name}: {exc} {_when(exc)}"
+            raise SimulationError(result.error, result, exc.signal) from None
+        finally:
             for inst in instances.values():
-                inst.fatal = True
-        failing = getattr(exc, "instance", None)
-        logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
-                         if failing is None or n == failing)
-        result.error = (f"{system.name}: FMU instance {failing!r} failed {_when(exc)}: "
-                        f"{exc}\n{logs}")
-        raise SimulationError(result.error, result) from exc
-    finally:
-        for inst in instances.values():
-            inst.close()
-        recorder.close()
-        result.recording = recorder.recording()
-    return result
+                inst.close()
+            recorder.close()
+            result.recording = recorder.recording()
+        return result
 
 
 def _when(exc) -> str:
@@ -220,7 +228,7 @@ def _when(exc) -> str:
     return "during initialisation" if t is None else f"at t = {t:.9g} s"
 
 
-def _initialise(system: System, bus: Bus, settings: dict) -> None:
+def _initialise(system: System, bus: Bus, settings: dict, stops: StopRequests) -> None:
     """Initialise every instance, sources first (inputs at start from their outputs), with the
     scenario's parameters and the algorithm's ``settings``."""
     exp = system.experiment
@@ -231,6 +239,7 @@ def _initialise(system: System, bus: Bus, settings: dict) -> None:
         _write_available(bus, name)
         inst.exit_initialisation()
         bus.read_outputs(name)
+        stops.check(None)
     for name in bus.instances:
         bus.read_outputs(name)
 
@@ -242,7 +251,7 @@ def _write_available(bus: Bus, name: str) -> None:
             bus.writer(name, inp)([bus.values[src]])
 
 
-def _run(exp, algorithm, bus, watchers, result) -> None:
+def _run(exp, algorithm, bus, watchers, result, stops: StopRequests) -> None:
     """Step from start to stop; an FMICallException leaves with ``time`` [s]: that of the
     values concerned (the end of the step for a non-finite output, the step's start else)."""
     t, h, span = exp.start, exp.step, exp.stop - exp.start
@@ -252,6 +261,7 @@ def _run(exp, algorithm, bus, watchers, result) -> None:
     gc.disable()  # the loop makes no reference cycles; full collections would cost ms each
     try:
         while t < exp.stop - eps:
+            stops.check(t)
             h_try = min(h, exp.stop - t)
             try:
                 accepted, h_next = algorithm.step(t, h_try)
@@ -271,6 +281,7 @@ def _run(exp, algorithm, bus, watchers, result) -> None:
             except FMICallException as exc:  # a recorded-only output at t
                 exc.time = t
                 raise
+        stops.check(t)  # a signal during the last step: the caller still wants to stop
     finally:
         if gc_was_on:
             gc.enable()

@@ -11,8 +11,8 @@ from .system import PLOT_KINDS, System
 
 def run(system: System, out: Path, progress: bool = True) -> master.Result:
     """Simulate ``system`` and write everything into ``out``. The results stream to
-    results.csv as they are recorded; on failure a summary with the error is written (no plots)
-    before SimulationError propagates."""
+    results.csv as they are recorded; on failure or interrupt a summary with the cause is
+    written (no plots) before SimulationError propagates."""
     out.mkdir(parents=True, exist_ok=True)
     try:
         result = master.simulate(system, progress=progress, results=out / "results.csv")
