@@ -15,7 +15,8 @@ class Faulty(Fmi2Slave):
     "raise": the doStep that starts at 5 ms raises;
     "get": after that doStep, reading x raises;
     "nan": the doStep that ends at 5 ms outputs NaN with status OK;
-    "slow": every doStep takes 10 ms of wall time."""
+    "slow": every doStep takes 10 ms of wall time;
+    "hang": the doStep that starts at 5 ms never returns."""
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -34,6 +35,8 @@ class Faulty(Fmi2Slave):
         self.late = current_time >= 0.005 - 1e-12
         if self.fault == "raise" and self.late:
             raise RuntimeError("the faulty model broke at 5 ms")
+        while self.fault == "hang" and self.late:
+            time.sleep(1.0)
         if self.fault == "slow":
             time.sleep(0.01)
         self.x = float("nan") if self.fault == "nan" and end >= 0.005 - 1e-12 else end

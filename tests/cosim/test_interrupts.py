@@ -1,6 +1,6 @@
-"""A run stopped from outside (SIGINT, SIGTERM), in child processes running
-``guideway-fmu run``: the rows computed so far are in results.csv, summary.json and stderr
-name the cause and the time, the exit status tells which (130, 143), and no folder
+"""A run stopped from outside (SIGINT, SIGTERM) or by its step timeout, in child processes
+running ``guideway-fmu run``: the rows computed so far are in results.csv, summary.json and
+stderr name the cause and the time, the exit status tells which (130, 143, 124), and no folder
 an FMU was unpacked into is left in the child's TMPDIR. The probe FMU `Faulty` is in
 conftest.py."""
 from __future__ import annotations
@@ -94,3 +94,15 @@ def test_a_signal_stops_the_run_keeping_its_results_and_naming_the_cause(start, 
     times = rows_on_disk(tmp_path)
     assert len(times) >= seen and t < 100.0 and times[-1] == pytest.approx(t, abs=1e-12)
     assert np.allclose(np.diff(times), 0.01) and summary["time_span_s"] == [0.0, times[-1]]
+
+
+@pytest.mark.parametrize("extra, options", [("", ("--step-timeout", "0.5")),
+                                            ("step_timeout = 0.5", ())])
+def test_a_step_that_outlasts_the_step_timeout_ends_the_run_naming_instance_time_and_limit(
+        start, tmp_path, extra, options):
+    child = start("hang", stop=0.01, step=0.001, extra=extra, options=options)
+    err, summary = ended(tmp_path, child, 124)
+    message = ("probe: FMU instance 'R' did not return from the step at t = 0.005 s within the "
+               "step timeout of 0.5 s")
+    assert message in err and summary["error"].startswith(message)
+    assert np.allclose(rows_on_disk(tmp_path), np.arange(6) * 0.001)  # t = 0 ... 5 ms

@@ -37,6 +37,7 @@ class FmuInstance:
     the state calls, so that a master can tell its own overhead from the FMUs' cost. ``log``
     holds the last LOG_LINES messages the FMU sent (logging is switched on). An FMICallException
     from any call made through these methods carries ``instance``, this instance's name.
+    ``stepping`` is (t [s], perf_counter() at the call [s]) while fmi2DoStep runs, else None.
     """
 
     def __init__(self, path: str | Path, name: str):
@@ -52,6 +53,7 @@ class FmuInstance:
         self.fmi_time = 0.0
         #: set once a call returned fmi2Fatal: FMI then forbids any further call
         self.fatal = False
+        self.stepping: tuple[float, float] | None = None
         self._unzip = tempfile.mkdtemp(prefix=TEMP_PREFIX)
         try:
             extract(str(self.path), self._unzip)
@@ -150,7 +152,11 @@ class FmuInstance:
 
     def do_step(self, t: float, h: float) -> None:
         """fmi2DoStep from t [s] over h [s]; raises FMICallException on discard, error or fatal."""
-        self.call(self.fmu.fmi2DoStep, self.fmu.component, t, h, 0)
+        self.stepping = (t, time.perf_counter())
+        try:
+            self.call(self.fmu.fmi2DoStep, self.fmu.component, t, h, 0)
+        finally:
+            self.stepping = None
 
     def get_state(self):
         """Save the FMU state; free it with :meth:`free_state`."""
@@ -193,5 +199,6 @@ class FmuInstance:
         self.remove_files()
 
     def remove_files(self) -> None:
-        """Delete the folder the FMU was unpacked into."""
+        """Delete the folder the FMU was unpacked into (the only step allowed for an instance
+        that is stuck in a call: a loaded library stays mapped while its file is gone)."""
         shutil.rmtree(self._unzip, ignore_errors=True)

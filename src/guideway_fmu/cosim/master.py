@@ -9,9 +9,13 @@ FMUs this project did not build (Real, Integer, Boolean and Enumeration connecti
 from __future__ import annotations
 
 import gc
+import math
+import sys
 import time
+from contextlib import nullcontext
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
@@ -22,6 +26,7 @@ from .interrupts import StopRequested, StopRequests
 from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording
 from .system import System
+from .watchdog import StepWatchdog
 
 
 @dataclass
@@ -164,12 +169,14 @@ def _recorded(system: System) -> list[str]:
 
 
 def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = (),
-             results: str | Path | None = None) -> Result:
+             results: str | Path | None = None,
+             before_exit: Callable[[Result], None] | None = None) -> Result:
     """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
     an FMU fails a step that cannot be retried or SIGINT/SIGTERM came (the run stops between
     steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
     when ``progress``). With ``results`` the recording streams to that CSV file as it is taken
-    (recording.py)."""
+    (recording.py). With the experiment's ``step_timeout``, a doStep that outlasts it ends the
+    process (watchdog.py) after ``before_exit`` got the partial result."""
     exp = system.experiment
     algorithm_class = ALGORITHMS[exp.algorithm]
     record = _recorded(system)
@@ -181,6 +188,19 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
     instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
+
+    def expired(name: str, t: float) -> None:  # in the watchdog's thread; the process then ends
+        result.error = (f"{system.name}: FMU instance {name!r} did not return from the step at "
+                        f"t = {t:.9g} s within the step timeout of {exp.step_timeout:g} s; the "
+                        "process ends without terminating or freeing the FMU instances")
+        recorder.close()
+        result.recording = recorder.recording()
+        for inst in instances.values():
+            inst.remove_files()
+        if before_exit is not None:
+            before_exit(result)
+        print(result.error, file=sys.stderr)
+
     with StopRequests() as stops:  # also while the instances are closed
         try:
             for name in order(system):
@@ -200,7 +220,9 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
             except FMICallException as exc:
                 exc.time = exp.start
                 raise
-            _run(exp, algorithm_class(bus, system), bus, watchers, result, stops)
+            with (StepWatchdog(instances, exp.step_timeout, expired)
+                  if exp.step_timeout < math.inf else nullcontext()):
+                _run(exp, algorithm_class(bus, system), bus, watchers, result, stops)
         except FMICallException as exc:
             if exc.status == FATAL:  # no call into any instance after fmi2Fatal
                 for inst in instances.values():

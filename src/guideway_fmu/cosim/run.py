@@ -11,11 +11,12 @@ from .system import PLOT_KINDS, System
 
 def run(system: System, out: Path, progress: bool = True) -> master.Result:
     """Simulate ``system`` and write everything into ``out``. The results stream to
-    results.csv as they are recorded; on failure or interrupt a summary with the cause is
-    written (no plots) before SimulationError propagates."""
+    results.csv as they are recorded; on failure, interrupt or step timeout a summary with the
+    cause is written (no plots) before SimulationError propagates or the process ends."""
     out.mkdir(parents=True, exist_ok=True)
     try:
-        result = master.simulate(system, progress=progress, results=out / "results.csv")
+        result = master.simulate(system, progress=progress, results=out / "results.csv",
+                                 before_exit=lambda partial: _write(partial, system, out, plot=False))
     except master.SimulationError as exc:
         _write(exc.result, system, out, plot=False)
         raise
