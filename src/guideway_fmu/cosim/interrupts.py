@@ -22,7 +22,8 @@ class StopRequests:
     """While entered (in the main thread; elsewhere it does nothing), SIGINT and SIGTERM are
     noted in ``signal`` instead of acting; :meth:`check` raises StopRequested once one came. A
     second signal of the same kind takes its default action at once (for an FMU that never
-    returns). Signals a parent set to be ignored stay ignored. Leaving restores the handlers."""
+    returns). Signals a parent set to be ignored stay ignored, and so do handlers installed
+    outside Python (they could not be restored). Leaving restores the handlers."""
 
     def __init__(self):
         self.signal: int | None = None
@@ -31,7 +32,7 @@ class StopRequests:
     def __enter__(self) -> "StopRequests":
         if threading.current_thread() is threading.main_thread():
             for s in SIGNALS:
-                if signal.getsignal(s) is not signal.SIG_IGN:
+                if signal.getsignal(s) not in (signal.SIG_IGN, None):
                     self._previous[s] = signal.signal(s, self._note)
         return self
 
