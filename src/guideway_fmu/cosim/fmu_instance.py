@@ -106,7 +106,7 @@ class FmuInstance:
     # -- calls ---------------------------------------------------------------------------------
     def call(self, function, *args):
         """``function(*args)``, an FMI call of this instance: timed into ``fmi_time``, and an
-        FMICallException it raises names the instance. (Lean: the master's inner loop.)"""
+        FMICallException it raises names the instance. Kept lean: the master's inner loop."""
         t0 = time.perf_counter()
         try:
             result = function(*args)
@@ -184,6 +184,7 @@ class FmuInstance:
         self.call(self.fmu.exitInitializationMode)
 
     def initialise(self, start_time: float, parameters: dict | None = None, stop_time=None) -> None:
+        """:meth:`enter_initialisation`, then :meth:`exit_initialisation`."""
         self.enter_initialisation(start_time, parameters, stop_time)
         self.exit_initialisation()
 
