@@ -93,3 +93,14 @@ def test_nan_from_a_third_party_fmu_stops_the_run_naming_it(faulty, fmu_dir):
     with pytest.raises(master.SimulationError,
                        match=r"FMU instance 'S' failed at t = 0.005 s: output x is nan"):
         master.simulate(s)
+
+
+def test_the_progress_bar_of_a_failed_run_ends_where_it_stopped(faulty, capsys):
+    from guideway_fmu.cosim import master, system
+
+    s = (system.Builder("bar").experiment(start=0.0, stop=0.01, step=0.001, algorithm="jacobi")
+         .component("S", faulty, fault="nan").system())
+    with pytest.raises(master.SimulationError):
+        master.simulate(s, progress=True)
+    bar = capsys.readouterr().err
+    assert "0.004/0.01 s" in bar and "0.01/0.01 s" not in bar  # last accepted step: 4 ms
