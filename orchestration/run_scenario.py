@@ -24,9 +24,9 @@ args = p.parse_args()
 
 s = system.load(scenarios.find(args.scenario), args.fmus)  # checked against every FMU's modelDescription
 s = s.with_changes(stop=args.stop)  # also step=... [s], algorithm="gauss-seidel", ...
-result = master.simulate(s, progress=True)  # raises master.SimulationError if an FMU fails
 args.out.mkdir(parents=True, exist_ok=True)
-csv = result.recording.write_csv(args.out / "results.csv")  # + results.units.json
+csv = args.out / "results.csv"  # written as the run goes, + results.units.json
+result = master.simulate(s, progress=True, results=csv)  # raises master.SimulationError if an FMU fails
 
 # The scenario's [plots] table: lists of signals per kind, plus skip [s], f_max [Hz], window [s]
 options = {k: s.plots[k] for k in ("skip", "f_max", "window") if k in s.plots}

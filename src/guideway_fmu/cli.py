@@ -5,6 +5,7 @@ import argparse
 import json
 import math
 import re
+import signal
 import sys
 from fractions import Fraction
 from pathlib import Path
@@ -33,7 +34,8 @@ def _load(args):
     if fmu_dir is None and scenarios.is_shipped(path):
         fmu_dir = build.ensure(Path("fmus"))
     s = system.load(path, fmu_dir)
-    changes = {k: getattr(args, k) for k in ("stop", "step", "algorithm") if getattr(args, k) is not None}
+    changes = {k: getattr(args, k, None) for k in ("stop", "step", "algorithm", "step_timeout")
+               if getattr(args, k, None) is not None}
     return s.with_changes(**changes) if changes else s
 
 
@@ -200,6 +202,9 @@ def main(argv: list[str] | None = None) -> int:
     _scenario_args(p)
     p.add_argument("--out", type=Path, required=True, help="output folder")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--step-timeout", type=float, default=None, metavar="SECONDS",
+                   help="end the run (exit status 124) when one FMU step takes longer than this "
+                        "wall time [s]; overrides the scenario's experiment.step_timeout")
     p = sub.add_parser("verify", help="co-simulation against the monolithic SciPy reference")
     _scenario_args(p)
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")
@@ -286,8 +291,13 @@ def main(argv: list[str] | None = None) -> int:
             print(_wear(args))
     except (ValueError, OSError, KeyError, RuntimeError) as exc:  # incl. SimulationError,
         # EHLConvergenceError, files that cannot be read or written
-        print(f"guideway-fmu {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        signum = getattr(exc, "signal", None)  # a run stopped by SIGINT or SIGTERM
+        print(f"guideway-fmu {args.command}: {'error: ' if signum is None else ''}{exc}",
+              file=sys.stderr)
+        return 2 if signum is None else 128 + signum  # the shell's status for a signal
+    except KeyboardInterrupt:  # Ctrl-C outside a run
+        print(f"guideway-fmu {args.command}: interrupted", file=sys.stderr)
+        return 128 + signal.SIGINT
     return 0
 
 

@@ -77,6 +77,8 @@ def test_load_reads_components_connections_tangents(tmp_path, fmu_dir):
     (lambda t: t.replace("step = 1e-06", "step = -1e-06"), r"\[experiment\] key 'step'"),
     (lambda t: t.replace("step = 1e-06", 'step = "fast"'), r"\[experiment\] key 'step': must be float"),
     (lambda t: t.replace("stop = 0.002", "stop = 0.002\nsolver = 1"), r"\[experiment\] key 'solver': is not a known key"),
+    (lambda t: t.replace("stop = 0.002", "stop = 0.002\nstep_timeout = 0"), r"\[experiment\] key 'step_timeout': must be > 0 s, got 0.0"),
+    (lambda t: t.replace("stop = 0.002", "stop = 0.002\nstep_timeout = nan"), r"\[experiment\] key 'step_timeout': must be finite, got nan"),
     (lambda t: t.replace("ContactDryHertz.fmu", "Nope.fmu"), r"\[components.Contact\] key 'fmu': FMU file .*Nope.fmu does not exist"),
     (lambda t: t.replace("y_start = 2e-7", "y_begin = 2e-7"), r"\[components.Carriage.parameters\] key 'y_begin': VerticalDynamics.fmu has no parameter"),
     (lambda t: t.replace("y_start = 2e-7", 'y_start = "high"'), r"\[components.Carriage.parameters\] key 'y_start': Real variable cannot take 'high'"),

@@ -1,38 +1,16 @@
 """An FMU that ends in fmi2Fatal (pythonfmu turns any Python exception inside a call into one):
 the master reports it with the FMU's message and the time, writes what it recorded, and makes no
 further call into any instance, which FMI forbids and which crashed the process (exit 139,
-20 of 20 runs) after every file was written. Runs in child processes: a crash is the failure."""
+20 of 20 runs) after every file was written. Runs in child processes: a crash is the failure.
+The probe FMU `Faulty` is in conftest.py."""
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import textwrap
 
 import pytest
-from pythonfmu.builder import FmuBuilder
-
-FAULTY = '''
-from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
-
-
-class Faulty(Fmi2Slave):
-    """x = t; as `fault` says, raises inside the doStep that starts at 5 ms ("raise") or
-    outputs NaN with status OK from the one that ends there ("nan")."""
-
-    def __init__(self, **kwargs):
-        super().__init__(**kwargs)
-        self.x, self.fault = 0.0, "raise"
-        self.register_variable(Real("x", causality=Fmi2Causality.output))
-        self.register_variable(String("fault", causality=Fmi2Causality.parameter,
-                                      variability=Fmi2Variability.tunable))
-
-    def do_step(self, current_time, step_size):
-        end = current_time + step_size
-        if self.fault == "raise" and current_time >= 0.005 - 1e-12:
-            raise RuntimeError("the faulty model broke at 5 ms")
-        self.x = float("nan") if self.fault == "nan" and end >= 0.005 - 1e-12 else end
-        return True
-'''
 
 CHILD = '''
 import sys
@@ -40,7 +18,7 @@ from pathlib import Path
 from guideway_fmu.cosim import master, system
 
 s = (system.Builder("fatal").experiment(start=0.0, stop=0.01, step=0.001, algorithm="{algorithm}")
-     .component("R", "{fmu}", fault="raise").component("Feed", "{feed}").system())
+     .component("R", "{fmu}", fault="{fault}").component("Feed", "{feed}").system())
 try:
     master.simulate(s)
 except master.SimulationError as exc:
@@ -51,24 +29,35 @@ except master.SimulationError as exc:
 '''
 
 
-@pytest.fixture(scope="module")
-def faulty(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("faulty")
-    (folder / "faulty.py").write_text(FAULTY)
-    return FmuBuilder.build_FMU(folder / "faulty.py", dest=folder / "Faulty.fmu")
+def fatal_run(faulty, fmu_dir, tmp_path, algorithm, fault, message, at="0.005"):
+    """One child run failing after 5 ms of t = 0 ... 5 ms recorded: its report (failed at t =
+    ``at`` s), and no unpacked FMU left in its TMPDIR."""
+    script = textwrap.dedent(CHILD.format(algorithm=algorithm, fmu=faulty, fault=fault,
+                                          feed=fmu_dir / "FeedKinematics.fmu"))
+    scratch = tmp_path / "tmp"
+    scratch.mkdir(exist_ok=True)
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         timeout=120, env={**os.environ, "TMPDIR": str(scratch)})
+    assert run.returncode == 3, (run.returncode, run.stderr[-2000:])
+    assert f"FMU instance 'R' failed at t = {at} s" in run.stderr
+    assert message in run.stderr
+    assert "ROWS 6" in run.stdout  # t = 0 ... 5 ms recorded before the failure
+    assert list(scratch.iterdir()) == []
 
 
 @pytest.mark.parametrize("algorithm", ["jacobi", "stabilised"])
-def test_fatal_fmu_is_reported_and_the_process_exits_cleanly(faulty, fmu_dir, algorithm):
-    script = textwrap.dedent(CHILD.format(algorithm=algorithm, fmu=faulty,
-                                          feed=fmu_dir / "FeedKinematics.fmu"))
+def test_fatal_fmu_is_reported_and_the_process_exits_cleanly(faulty, fmu_dir, tmp_path, algorithm):
     for _ in range(5):
-        run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                             timeout=120)
-        assert run.returncode == 3, (run.returncode, run.stderr[-2000:])
-        assert "FMU instance 'R' failed at t = 0.005 s" in run.stderr
-        assert "the faulty model broke at 5 ms" in run.stderr
-        assert "ROWS 6" in run.stdout  # t = 0 ... 5 ms recorded before the failure
+        fatal_run(faulty, fmu_dir, tmp_path, algorithm, "raise", "the faulty model broke at 5 ms")
+
+
+@pytest.mark.parametrize("algorithm", ["jacobi", "stabilised"])
+def test_a_getter_failing_mid_run_names_the_instance_and_the_step(faulty, fmu_dir, tmp_path,
+                                                                  algorithm):
+    # reported as "FMU instance None failed during initialisation" before; R.x is recorded
+    # only, so it is first read (and fails) after the step from 5 ms, for the sample at 6 ms
+    fatal_run(faulty, fmu_dir, tmp_path, algorithm, "get", "the faulty model's output broke",
+              at="0.006")
 
 
 def test_an_fmu_that_cannot_be_instantiated_leaves_no_extracted_folder(fmu_dir, tmp_path,
@@ -104,3 +93,14 @@ def test_nan_from_a_third_party_fmu_stops_the_run_naming_it(faulty, fmu_dir):
     with pytest.raises(master.SimulationError,
                        match=r"FMU instance 'S' failed at t = 0.005 s: output x is nan"):
         master.simulate(s)
+
+
+def test_the_progress_bar_of_a_failed_run_ends_where_it_stopped(faulty, capsys):
+    from guideway_fmu.cosim import master, system
+
+    s = (system.Builder("bar").experiment(start=0.0, stop=0.01, step=0.001, algorithm="jacobi")
+         .component("S", faulty, fault="nan").system())
+    with pytest.raises(master.SimulationError):
+        master.simulate(s, progress=True)
+    bar = capsys.readouterr().err
+    assert "0.004/0.01 s" in bar and "0.01/0.01 s" not in bar  # last accepted step: 4 ms

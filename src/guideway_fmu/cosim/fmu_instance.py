@@ -3,6 +3,7 @@ access for the master's inner loop, FMU state, the instance's log, and the time 
 from __future__ import annotations
 
 import shutil
+import tempfile
 import time
 from collections import deque
 from ctypes import byref
@@ -28,6 +29,7 @@ _LOGS: dict[str, deque] = {}
 __all__ = ["FmuInstance", "FMICallException", "ERROR", "FATAL"]
 ERROR = 3  # fmi2Error: the instance cannot go on
 FATAL = 4  # fmi2Fatal: every instance of the process is then beyond use
+TEMP_PREFIX = "guideway-fmu-"  # of the temporary folder each instance's FMU is unpacked into
 
 
 class FmuInstance:
@@ -35,7 +37,9 @@ class FmuInstance:
 
     ``fmi_time`` [s] accumulates the wall time spent inside the batched calls, ``do_step`` and
     the state calls, so that a master can tell its own overhead from the FMUs' cost. ``log``
-    holds the last LOG_LINES messages the FMU sent (logging is switched on).
+    holds the last LOG_LINES messages the FMU sent (logging is switched on). An FMICallException
+    from any call made through these methods carries ``instance``, this instance's name.
+    ``stepping`` is (t [s], perf_counter() at the call [s]) while fmi2DoStep runs, else None.
     """
 
     def __init__(self, path: str | Path, name: str):
@@ -51,9 +55,11 @@ class FmuInstance:
         self.fmi_time = 0.0
         #: set once a call returned fmi2Fatal: FMI then forbids any further call
         self.fatal = False
+        self.stepping: tuple[float, float] | None = None
         check_entries(self.path)
-        self._unzip = extract(str(self.path))
+        self._unzip = tempfile.mkdtemp(prefix=TEMP_PREFIX)
         try:
+            extract(str(self.path), self._unzip)
             self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=self._unzip,
                                  modelIdentifier=cs.modelIdentifier, instanceName=name)
             self._callbacks = fmi2CallbackFunctions()
@@ -63,7 +69,7 @@ class FmuInstance:
             addLoggerProxy(byref(self._callbacks))
             self.fmu.instantiate(callbacks=self._callbacks, loggingOn=True)
         except BaseException:
-            shutil.rmtree(self._unzip, ignore_errors=True)  # no instance: nothing else to free
+            self.remove_files()  # no instance: nothing else to free
             raise
 
     @staticmethod
@@ -88,7 +94,7 @@ class FmuInstance:
     def set(self, name: str, value) -> None:
         v = self.variable(name)
         if v.type == "String":
-            self.fmu.setString([v.valueReference], [str(value)])
+            self.call(self.fmu.setString, [v.valueReference], [str(value)])
         else:
             self.writer([name])([value])
 
@@ -96,9 +102,22 @@ class FmuInstance:
         """The variable's value; a String as text (fmpy returns the C bytes)."""
         v = self.variable(name)
         if v.type == "String":
-            value = self.fmu.getString([v.valueReference])[0]
+            value = self.call(self.fmu.getString, [v.valueReference])[0]
             return value.decode("utf-8", "replace") if isinstance(value, bytes) else value
         return self.reader([name])()[0]
+
+    # -- calls ---------------------------------------------------------------------------------
+    def call(self, function, *args):
+        """``function(*args)``, an FMI call of this instance: timed into ``fmi_time``, and an
+        FMICallException it raises names the instance. Kept lean: the master's inner loop."""
+        t0 = time.perf_counter()
+        try:
+            result = function(*args)
+        except FMICallException as exc:
+            exc.instance = self.name
+            raise
+        self.fmi_time += time.perf_counter() - t0
+        return result
 
     # -- batched access for the master ------------------------------------------------------
     def _batch(self, names, setter: bool):
@@ -116,61 +135,61 @@ class FmuInstance:
 
     def reader(self, names):
         """A function returning the current values of ``names`` (one type) as a list, one FMI call."""
-        comp, call, vrs, values, n = self._batch(names, setter=False)
-        clock = time.perf_counter
+        comp, get, vrs, values, n = self._batch(names, setter=False)
+        call = self.call
 
         def read():
-            t0 = clock()
-            call(comp, vrs, n, values)
-            self.fmi_time += clock() - t0
+            call(get, comp, vrs, n, values)
             return values[:]
         return read
 
     def writer(self, names):
         """A function setting ``names`` (one type) from a sequence of values, one FMI call."""
-        comp, call, vrs, values, n = self._batch(names, setter=True)
-        clock = time.perf_counter
+        comp, put, vrs, values, n = self._batch(names, setter=True)
+        call = self.call
 
         def write(new):
             values[:] = new
-            t0 = clock()
-            call(comp, vrs, n, values)
-            self.fmi_time += clock() - t0
+            call(put, comp, vrs, n, values)
         return write
 
     def do_step(self, t: float, h: float) -> None:
-        """fmi2DoStep; raises FMICallException on discard, error or fatal."""
-        t0 = time.perf_counter()
+        """fmi2DoStep from t [s] over h [s]; raises FMICallException on discard, error or fatal."""
+        self.stepping = (t, time.perf_counter())
         try:
-            self.fmu.fmi2DoStep(self.fmu.component, t, h, 0)
+            self.call(self.fmu.fmi2DoStep, self.fmu.component, t, h, 0)
         finally:
-            self.fmi_time += time.perf_counter() - t0
+            self.stepping = None
 
     def get_state(self):
         """Save the FMU state; free it with :meth:`free_state`."""
-        t0 = time.perf_counter()
         state = fmi2FMUstate()
-        self.fmu.fmi2GetFMUstate(self.fmu.component, byref(state))
-        self.fmi_time += time.perf_counter() - t0
+        self.call(self.fmu.fmi2GetFMUstate, self.fmu.component, byref(state))
         return state
 
     def set_state(self, state) -> None:
-        t0 = time.perf_counter()
-        self.fmu.fmi2SetFMUstate(self.fmu.component, state)
-        self.fmi_time += time.perf_counter() - t0
+        self.call(self.fmu.fmi2SetFMUstate, self.fmu.component, state)
 
     def free_state(self, state) -> None:
-        t0 = time.perf_counter()
-        self.fmu.fmi2FreeFMUstate(self.fmu.component, byref(state))
-        self.fmi_time += time.perf_counter() - t0
+        self.call(self.fmu.fmi2FreeFMUstate, self.fmu.component, byref(state))
 
     # -- life cycle ------------------------------------------------------------------------
-    def initialise(self, start_time: float, parameters: dict | None = None, stop_time=None) -> None:
-        self.fmu.setupExperiment(startTime=start_time, stopTime=stop_time)
-        self.fmu.enterInitializationMode()
+    def enter_initialisation(self, start_time: float, parameters: dict | None = None,
+                             stop_time=None) -> None:
+        """Set up the experiment from ``start_time`` [s], enter Initialization Mode, set the
+        parameters (or inputs' start values) by name."""
+        self.call(self.fmu.setupExperiment, None, start_time, stop_time)  # no tolerance
+        self.call(self.fmu.enterInitializationMode)
         for key, value in (parameters or {}).items():
             self.set(key, value)
-        self.fmu.exitInitializationMode()
+
+    def exit_initialisation(self) -> None:
+        self.call(self.fmu.exitInitializationMode)
+
+    def initialise(self, start_time: float, parameters: dict | None = None, stop_time=None) -> None:
+        """:meth:`enter_initialisation`, then :meth:`exit_initialisation`."""
+        self.enter_initialisation(start_time, parameters, stop_time)
+        self.exit_initialisation()
 
     def close(self) -> None:
         """Terminate and free the instance, unload it and delete its extracted files; after
@@ -181,4 +200,9 @@ class FmuInstance:
             except FMICallException:
                 pass  # an instance that failed may refuse to terminate; free it all the same
             self.fmu.freeInstance()
+        self.remove_files()
+
+    def remove_files(self) -> None:
+        """Delete the folder the FMU was unpacked into (the only step allowed for an instance
+        that is stuck in a call: a loaded library stays mapped while its file is gone)."""
         shutil.rmtree(self._unzip, ignore_errors=True)

@@ -9,17 +9,24 @@ FMUs this project did not build (Real, Integer, Boolean and Enumeration connecti
 from __future__ import annotations
 
 import gc
+import math
+import sys
 import time
+from contextlib import nullcontext
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
 
 from .algorithms import ALGORITHMS, order
 from .fmu_instance import ERROR, FATAL, FmuInstance
+from .interrupts import StopRequested, StopRequests
 from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording
 from .system import System
+from .watchdog import StepWatchdog
 
 
 @dataclass
@@ -46,11 +53,12 @@ class Result:
 
 
 class SimulationError(RuntimeError):
-    """A run that stopped; ``result`` holds what was recorded until then."""
+    """A run that stopped; ``result`` holds what was recorded until then, ``signal`` the signal
+    (SIGINT, SIGTERM) that stopped it, None when an FMU failed."""
 
-    def __init__(self, message: str, result: Result):
+    def __init__(self, message: str, result: Result, signal: int | None = None):
         super().__init__(message)
-        self.result = result
+        self.result, self.signal = result, signal
 
 
 class NonFiniteOutput(FMICallException):
@@ -115,11 +123,7 @@ class Bus:
             write([values[s] for s in sources])
 
     def do_step(self, name: str, t: float, h: float) -> None:
-        try:
-            self.instances[name].do_step(t, h)
-        except FMICallException as exc:
-            exc.instance, exc.time = name, t
-            raise
+        self.instances[name].do_step(t, h)
 
     def connected_inputs(self):
         return self._sources.items()
@@ -164,63 +168,102 @@ def _recorded(system: System) -> list[str]:
             for v, var in vs.items() if var.causality == "output" and var.type != "String"]
 
 
-def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = ()) -> Result:
+def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = (),
+             results: str | Path | None = None,
+             before_exit: Callable[[Result], None] | None = None) -> Result:
     """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
-    an FMU fails a step that cannot be retried. ``observers`` are notified besides the recorder
-    (and the progress bar when ``progress``)."""
+    an FMU fails a step that cannot be retried or SIGINT/SIGTERM came (the run stops between
+    steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
+    when ``progress``). With ``results`` the recording streams to that CSV file as it is taken
+    (recording.py). With the experiment's ``step_timeout``, a doStep that outlasts it ends the
+    process (watchdog.py) after ``before_exit`` got the partial result."""
     exp = system.experiment
     algorithm_class = ALGORITHMS[exp.algorithm]
     record = _recorded(system)
     links = algorithm_class.links(system)
     exchanged = ({(c.source, c.output) for c in system.connections}
                  | algorithm_class.exchanged(system))
-    settings = algorithm_class.settings(system)
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
-                        system.record_interval)
+                        system.record_interval, results)
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
     instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
-    try:
-        for name in order(system):  # initialise sources first: inputs at t0 from their outputs
-            comp = system.components[name]
-            try:
-                instances[name] = FmuInstance(comp.fmu, name)
-            except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
-                raise SimulationError(f"{system.name}: cannot instantiate {name} from {comp.fmu}: "
-                                      f"{exc}", result) from exc
-        bus = Bus(system, instances, exchanged, {tuple(r.split(".", 1)) for r in record}, links)
-        for name in order(system):
-            inst = instances[name]
-            inst.fmu.setupExperiment(startTime=exp.start, stopTime=exp.stop)
-            inst.fmu.enterInitializationMode()
-            for key, value in {**system.components[name].parameters,
-                               **settings.get(name, {})}.items():
-                inst.set(key, value)
-            _write_available(bus, name)
-            inst.fmu.exitInitializationMode()
-            bus.read_outputs(name)
-        for name in instances:
-            bus.read_outputs(name)
-        result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
-        for w in watchers:
-            w.started(system, bus)
-        _run(exp, algorithm_class(bus, system), bus, watchers, result)
-    except FMICallException as exc:
-        if exc.status == FATAL:  # no call into any instance after fmi2Fatal
-            for inst in instances.values():
-                inst.fatal = True
-        failing = getattr(exc, "instance", None)
-        logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
-                         if failing is None or n == failing)
-        when = f"at t = {exc.time:.9g} s" if hasattr(exc, "time") else "during initialisation"
-        result.error = f"{system.name}: FMU instance {failing!r} failed {when}: {exc}\n{logs}"
+
+    def expired(name: str, t: float) -> None:  # in the watchdog's thread; the process then ends
+        result.error = (f"{system.name}: FMU instance {name!r} did not return from the step at "
+                        f"t = {t:.9g} s within the step timeout of {exp.step_timeout:g} s; the "
+                        "process ends without terminating or freeing the FMU instances")
+        recorder.close()
         result.recording = recorder.recording()
-        raise SimulationError(result.error, result) from exc
-    finally:
         for inst in instances.values():
-            inst.close()
-    result.recording = recorder.recording()
-    return result
+            inst.remove_files()
+        if before_exit is not None:
+            before_exit(result)
+        print(result.error, file=sys.stderr)
+
+    with StopRequests() as stops:  # also while the instances are closed
+        try:
+            for name in order(system):
+                comp = system.components[name]
+                try:
+                    instances[name] = FmuInstance(comp.fmu, name)
+                except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
+                    raise SimulationError(f"{system.name}: cannot instantiate {name} from "
+                                          f"{comp.fmu}: {exc}", result) from exc
+                stops.check(None)
+            bus = Bus(system, instances, exchanged, {tuple(r.split(".", 1)) for r in record}, links)
+            _initialise(system, bus, algorithm_class.settings(system), stops)
+            result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
+            try:
+                for w in watchers:
+                    w.started(system, bus)
+            except FMICallException as exc:
+                exc.time = exp.start
+                raise
+            with (StepWatchdog(instances, exp.step_timeout, expired)
+                  if exp.step_timeout < math.inf else nullcontext()):
+                _run(exp, algorithm_class(bus, system), bus, watchers, result, stops)
+        except FMICallException as exc:
+            if exc.status == FATAL:  # no call into any instance after fmi2Fatal
+                for inst in instances.values():
+                    inst.fatal = True
+            failing = getattr(exc, "instance", None)
+            logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
+                             if failing is None or n == failing)
+            result.error = (f"{system.name}: FMU instance {failing!r} failed {_when(exc)}: "
+                            f"{exc}\n{logs}")
+            raise SimulationError(result.error, result) from exc
+        except StopRequested as exc:
+            result.error = f"{system.name}: {exc} {_when(exc)}"
+            raise SimulationError(result.error, result, exc.signal) from None
+        finally:
+            for inst in instances.values():
+                inst.close()
+            recorder.close()
+            result.recording = recorder.recording()
+        return result
+
+
+def _when(exc) -> str:
+    """Where the run was when ``exc`` came: the time it carries [s], else initialisation."""
+    t = getattr(exc, "time", None)
+    return "during initialisation" if t is None else f"at t = {t:.9g} s"
+
+
+def _initialise(system: System, bus: Bus, settings: dict, stops: StopRequests) -> None:
+    """Initialise every instance, sources first (inputs at start from their outputs), with the
+    scenario's parameters and the algorithm's ``settings``."""
+    exp = system.experiment
+    for name in order(system):
+        inst = bus.instances[name]
+        inst.enter_initialisation(exp.start, {**system.components[name].parameters,
+                                              **settings.get(name, {})}, exp.stop)
+        _write_available(bus, name)
+        inst.exit_initialisation()
+        bus.read_outputs(name)
+        stops.check(None)
+    for name in bus.instances:
+        bus.read_outputs(name)
 
 
 def _write_available(bus: Bus, name: str) -> None:
@@ -230,34 +273,40 @@ def _write_available(bus: Bus, name: str) -> None:
             bus.writer(name, inp)([bus.values[src]])
 
 
-def _run(exp, algorithm, bus, watchers, result) -> None:
+def _run(exp, algorithm, bus, watchers, result, stops: StopRequests) -> None:
+    """Step from start to stop; an FMICallException leaves with ``time`` [s]: that of the
+    values concerned (the end of the step for a non-finite output, the step's start else)."""
     t, h, span = exp.start, exp.step, exp.stop - exp.start
     eps = 1e-9 * exp.step
     fmi0, wall0 = bus.fmi_time(), time.perf_counter()
-    steps = rejected = 0
     gc_was_on = gc.isenabled()
     gc.disable()  # the loop makes no reference cycles; full collections would cost ms each
     try:
         while t < exp.stop - eps:
+            stops.check(t)
             h_try = min(h, exp.stop - t)
             try:
                 accepted, h_next = algorithm.step(t, h_try)
-            except NonFiniteOutput as exc:
-                exc.time = t + h_try  # read after the step to it
+            except FMICallException as exc:
+                exc.time = t + h_try if isinstance(exc, NonFiniteOutput) else t
                 raise
             if not accepted:
-                rejected += 1
+                result.rejected += 1
                 h = h_next
                 continue
-            steps += 1
+            result.steps += 1
             t = exp.start + span if exp.stop - (t + h_try) <= eps else t + h_try
             h = h_next if exp.tolerance > 0 else exp.step
-            for w in watchers:
-                w.stepped(t, bus)
+            try:
+                for w in watchers:
+                    w.stepped(t, bus)
+            except FMICallException as exc:  # a recorded-only output at t
+                exc.time = t
+                raise
+        stops.check(t)  # a signal during the last step: the caller still wants to stop
     finally:
         if gc_was_on:
             gc.enable()
-        result.steps, result.rejected = steps, rejected
         result.wall_time = time.perf_counter() - wall0
         result.fmi_time = bus.fmi_time() - fmi0
         for w in watchers:

@@ -31,15 +31,15 @@ class ProgressBar(Observer):
 
     def started(self, system, bus):
         exp = system.experiment
-        self.start, self.steps = exp.start, 0
+        self.start, self.steps, self.t = exp.start, 0, exp.start
         self.bar = tqdm(total=exp.stop - exp.start, unit="s", desc=system.name,
                         bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]")
 
     def stepped(self, t, bus):
-        self.steps += 1
+        self.steps, self.t = self.steps + 1, t
         if self.steps % PROGRESS_EVERY == 0:
             self.bar.update(t - self.start - self.bar.n)
 
     def finished(self, result):
-        self.bar.update(self.bar.total - self.bar.n)
+        self.bar.update(self.t - self.start - self.bar.n)  # where it stopped, the stop or not
         self.bar.close()

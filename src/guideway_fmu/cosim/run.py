@@ -1,4 +1,5 @@
-"""One scenario run to a folder: results.csv (+ units), summary.json and the plots."""
+"""One scenario run to a folder: results.csv (+ units, written as the run goes), summary.json
+and the plots."""
 from __future__ import annotations
 
 import json
@@ -9,11 +10,13 @@ from .system import PLOT_KINDS, System
 
 
 def run(system: System, out: Path, progress: bool = True) -> master.Result:
-    """Simulate ``system`` and write everything into ``out``. On failure the partial recording
-    and a summary with the error are written before SimulationError propagates."""
+    """Simulate ``system`` and write everything into ``out``. The results stream to
+    results.csv as they are recorded; on failure, interrupt or step timeout a summary with the
+    cause is written (no plots) before SimulationError propagates or the process ends."""
     out.mkdir(parents=True, exist_ok=True)
     try:
-        result = master.simulate(system, progress=progress)
+        result = master.simulate(system, progress=progress, results=out / "results.csv",
+                                 before_exit=lambda partial: _write(partial, system, out, plot=False))
     except master.SimulationError as exc:
         _write(exc.result, system, out, plot=False)
         raise
@@ -23,7 +26,6 @@ def run(system: System, out: Path, progress: bool = True) -> master.Result:
 
 def _write(result: master.Result, system: System, out: Path, plot: bool) -> None:
     rec = result.recording
-    rec.write_csv(out / "results.csv")
     files = ["results.csv", "results.units.json", "summary.json"]
     if plot and len(rec.time) > 8:
         kinds = {k: v for k, v in system.plots.items() if k in PLOT_KINDS and v}

@@ -17,6 +17,8 @@ equal system: the one scenario writer. The format (tables and keys, all SI units
     tolerance = 0.0                 # stabilised only: > 0 turns on step-size control (module doc
     min_step = 1e-8                 #   of stabilised.py); min_step/max_step bound the step [s]
     max_step = 1e-4
+    step_timeout = 60.0             # optional, s of wall time: a doStep of any FMU that takes
+                                    #   longer ends the run (cosim/watchdog.py); default: no limit
 
     [components.Contact]            # one table per instance; the key is the instance name
     fmu = "../../fmus/ContactEHL.fmu"   # relative to this file, or looked up in --fmus
@@ -122,6 +124,7 @@ class Experiment:
     tolerance: float = 0.0
     min_step: float = 1e-9
     max_step: float = math.inf
+    step_timeout: float = math.inf  # s of wall time per doStep
 
 
 @dataclass(frozen=True)
@@ -434,9 +437,10 @@ def check(system: System, src: str) -> System:
     if exp.algorithm not in ALGORITHMS:
         raise fail("experiment", "algorithm",
                    f"must be one of {', '.join(ALGORITHMS)}, got {exp.algorithm!r}")
-    for key in ("start", "stop", "step", "tolerance", "min_step", "max_step"):
+    for key in ("start", "stop", "step", "tolerance", "min_step", "max_step", "step_timeout"):
         value = getattr(exp, key)
-        if math.isnan(value) or (key != "max_step" and not math.isfinite(value)):
+        if math.isnan(value) or (key not in ("max_step", "step_timeout")
+                                 and not math.isfinite(value)):
             raise fail("experiment", key, f"must be finite, got {value!r}")
     if not exp.stop > exp.start:
         raise fail("experiment", "stop", f"must be greater than start ({exp.start}), got {exp.stop}")
@@ -444,6 +448,8 @@ def check(system: System, src: str) -> System:
         raise fail("experiment", "step", f"must be > 0 and <= stop - start, got {exp.step}")
     if exp.tolerance < 0:
         raise fail("experiment", "tolerance", f"must be >= 0, got {exp.tolerance}")
+    if not exp.step_timeout > 0:
+        raise fail("experiment", "step_timeout", f"must be > 0 s, got {exp.step_timeout}")
     if not 0 < exp.min_step <= exp.max_step:
         raise fail("experiment", "min_step", f"must be > 0 and <= max_step, got {exp.min_step}")
     if not system.components:

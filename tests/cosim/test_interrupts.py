@@ -1,0 +1,108 @@
+"""A run stopped from outside (SIGINT, SIGTERM) or by its step timeout, in child processes
+running ``guideway-fmu run``: the rows computed so far are in results.csv, summary.json and
+stderr name the cause and the time, the exit status tells which (130, 143, 124), and no folder
+an FMU was unpacked into is left in the child's TMPDIR. The probe FMU `Faulty` is in
+conftest.py."""
+from __future__ import annotations
+
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import guideway_fmu
+
+SCENARIO = """\
+name = "probe"
+
+[experiment]
+stop = {stop}
+step = {step}
+algorithm = "jacobi"
+{extra}
+[components.R]
+fmu = "{fmu}"
+parameters = {{ fault = "{fault}" }}
+"""
+
+
+@pytest.fixture
+def start(tmp_path, faulty):
+    """start(fault, stop, step, extra, options): ``guideway-fmu run`` on the probe in a child
+    with its own TMPDIR (tmp_path/tmp); killed after the test if it still runs."""
+    children = []
+
+    def launch(fault, stop, step, extra="", options=()):
+        path = tmp_path / "probe.toml"
+        path.write_text(SCENARIO.format(fmu=faulty, fault=fault, stop=stop, step=step,
+                                        extra=extra))
+        (tmp_path / "tmp").mkdir()
+        env = {**os.environ, "TMPDIR": str(tmp_path / "tmp"),
+               "PYTHONPATH": str(Path(guideway_fmu.__file__).parents[1])}
+        children.append(subprocess.Popen(
+            [sys.executable, "-m", "guideway_fmu.cli", "run", str(path), "--out",
+             str(tmp_path / "out"), "--no-progress", *options],
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL)))  # not ignored
+        return children[-1]
+    yield launch
+    for child in children:
+        if child.poll() is None:
+            child.kill()
+            child.communicate()
+
+
+def rows_on_disk(tmp_path) -> np.ndarray:
+    """The time column of results.csv, checking its header."""
+    lines = (tmp_path / "out" / "results.csv").read_text().splitlines()
+    assert lines[0] == "time,R.x"
+    return np.array([float(line.split(",")[0]) for line in lines[1:]])
+
+
+def ended(tmp_path, child, status):
+    """The child's stderr and summary.json after it ended with ``status``, its TMPDIR empty."""
+    _, err = child.communicate(timeout=60)
+    assert child.returncode == status, err[-2000:]
+    assert "Traceback" not in err
+    assert list((tmp_path / "tmp").iterdir()) == []  # no unpacked FMU left behind
+    return err, json.loads((tmp_path / "out" / "summary.json").read_text())
+
+
+@pytest.mark.parametrize("signum, status", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
+def test_a_signal_stops_the_run_keeping_its_results_and_naming_the_cause(start, tmp_path,
+                                                                        signum, status):
+    child = start("slow", stop=100.0, step=0.01)  # 10 ms of wall time a step: 100 s
+    results, deadline = tmp_path / "out" / "results.csv", time.monotonic() + 60
+    while not (results.exists() and len(results.read_text().splitlines()) > 2):
+        assert child.poll() is None and time.monotonic() < deadline, "no rows on disk"
+        time.sleep(0.05)
+    seen = len(rows_on_disk(tmp_path))
+    child.send_signal(signum)
+    err, summary = ended(tmp_path, child, status)
+    name = signal.Signals(signum).name
+    found = re.search(rf"guideway-fmu run: probe: interrupted by {name} at t = (\S+) s$", err)
+    assert found, err
+    t = float(found[1])
+    assert summary["error"] == f"probe: interrupted by {name} at t = {found[1]} s"
+    times = rows_on_disk(tmp_path)
+    assert len(times) >= seen and t < 100.0 and times[-1] == pytest.approx(t, abs=1e-12)
+    assert np.allclose(np.diff(times), 0.01) and summary["time_span_s"] == [0.0, times[-1]]
+
+
+@pytest.mark.parametrize("extra, options", [("", ("--step-timeout", "0.5")),
+                                            ("step_timeout = 0.5", ())])
+def test_a_step_that_outlasts_the_step_timeout_ends_the_run_naming_instance_time_and_limit(
+        start, tmp_path, extra, options):
+    child = start("hang", stop=0.01, step=0.001, extra=extra, options=options)
+    err, summary = ended(tmp_path, child, 124)
+    message = ("probe: FMU instance 'R' did not return from the step at t = 0.005 s within the "
+               "step timeout of 0.5 s")
+    assert message in err and summary["error"].startswith(message)
+    assert np.allclose(rows_on_disk(tmp_path), np.arange(6) * 0.001)  # t = 0 ... 5 ms
