@@ -31,3 +31,18 @@ def test_patch_refuses_a_binary_it_does_not_know():
         exit_patch.patch(b"MZ" + original[2:])
     with pytest.raises(exit_patch.ExitPatchError, match="no function nothing"):
         exit_patch.function_offset(original, b"nothing")
+
+
+def test_patch_fmu_patches_the_linux_binary_and_keeps_every_other_entry(tmp_path):
+    import zipfile
+
+    fmu = tmp_path / "P.fmu"
+    with zipfile.ZipFile(fmu, "w") as archive:
+        archive.writestr("modelDescription.xml", b"<x/>")
+        archive.writestr("binaries/linux64/P.so", SHIPPED.read_bytes())
+        archive.writestr("binaries/win64/P.dll", b"MZ windows")
+    exit_patch.patch_fmu(fmu)
+    with zipfile.ZipFile(fmu) as archive:
+        assert archive.read("modelDescription.xml") == b"<x/>"
+        assert archive.read("binaries/win64/P.dll") == b"MZ windows"
+        assert archive.read("binaries/linux64/P.so") == exit_patch.patch(SHIPPED.read_bytes())

@@ -4,6 +4,8 @@ from __future__ import annotations
 import pytest
 from pythonfmu.builder import FmuBuilder
 
+from guideway_fmu.components import exit_patch
+
 FAULTY = '''
 import time
 
@@ -49,4 +51,6 @@ def faulty(tmp_path_factory):
     """Faulty.fmu, built once per test session."""
     folder = tmp_path_factory.mktemp("faulty")
     (folder / "faulty.py").write_text(FAULTY)
-    return FmuBuilder.build_FMU(folder / "faulty.py", dest=folder / "Faulty.fmu")
+    # a plain pythonfmu FMU with its exit-time defect patched: the test process exits cleanly
+    return exit_patch.patch_fmu(FmuBuilder.build_FMU(folder / "faulty.py",
+                                                     dest=folder / "Faulty.fmu"))

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from pythonfmu.builder import FmuBuilder
 
+from guideway_fmu.components import exit_patch
 from guideway_fmu.cosim import master, system
 
 PROBE = '''
@@ -43,8 +44,9 @@ def probe_fmu(tmp_path_factory):
     folder = tmp_path_factory.mktemp("probe")
     script = folder / "probe.py"
     script.write_text(PROBE)
-    return FmuBuilder.build_FMU(script, dest=folder / "Probe.fmu",
-                                canHandleVariableCommunicationStepSize=False)
+    # a plain pythonfmu FMU with its exit-time defect patched: the test process exits cleanly
+    return exit_patch.patch_fmu(FmuBuilder.build_FMU(
+        script, dest=folder / "Probe.fmu", canHandleVariableCommunicationStepSize=False))
 
 
 def scenario(tmp_path, fmu, extra="", experiment="stop = 0.01\nstep = 0.001", record='"A.x"'):

@@ -101,18 +101,15 @@ def _finish(fmu: Path, package: str) -> Path:
     pythonfmu FMU of a process) into the FMU's own package as ``_pythonfmu``, and make the Linux
     binary safe at exit (:mod:`.exit_patch`); returns ``fmu``."""
     shared, private = "resources/pythonfmu/", f"resources/{package}/_pythonfmu/"
-    finished = fmu.with_suffix(".finishing")
+    moved = fmu.with_suffix(".moving")
     with zipfile.ZipFile(fmu) as source, \
-            zipfile.ZipFile(finished, "w", zipfile.ZIP_DEFLATED) as target:
+            zipfile.ZipFile(moved, "w", zipfile.ZIP_DEFLATED) as target:
         for entry in source.infolist():
-            name, data = entry.filename, source.read(entry)
-            if name.startswith(shared):
-                name = private + name[len(shared):]
-            elif name.startswith("binaries/linux64/") and name.endswith(".so"):
-                data = exit_patch.patch(data)
-            target.writestr(name, data)
-    finished.replace(fmu)
-    return fmu
+            name = entry.filename
+            target.writestr(private + name[len(shared):] if name.startswith(shared) else name,
+                            source.read(entry))
+    moved.replace(fmu)
+    return exit_patch.patch_fmu(fmu)
 
 
 def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:

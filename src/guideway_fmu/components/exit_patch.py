@@ -15,6 +15,8 @@ static destructors run, which is safe, and is left unchanged.
 from __future__ import annotations
 
 import struct
+import zipfile
+from pathlib import Path
 
 SYMBOL = b"finalizePythonInterpreter"
 ENDBR64 = bytes.fromhex("f30f1efa")
@@ -57,3 +59,18 @@ def patch(elf: bytes) -> bytes:
     if elf[at:at + 4] != ENDBR64:
         raise ExitPatchError(f"{SYMBOL.decode()} does not start as in pythonfmu 0.7")
     return elf[:at + 4] + RET + elf[at + 5:]
+
+
+def patch_fmu(fmu: str | Path) -> Path:
+    """Rewrite the FMU archive ``fmu`` with its Linux binaries patched; returns its path."""
+    fmu = Path(fmu)
+    patched = fmu.with_suffix(".patching")
+    with zipfile.ZipFile(fmu) as source, \
+            zipfile.ZipFile(patched, "w", zipfile.ZIP_DEFLATED) as target:
+        for entry in source.infolist():
+            data = source.read(entry)
+            if entry.filename.startswith("binaries/linux64/") and entry.filename.endswith(".so"):
+                data = patch(data)
+            target.writestr(entry.filename, data)
+    patched.replace(fmu)
+    return fmu
