@@ -103,3 +103,17 @@ def test_bad_parameter_discards_step_with_log_naming_it(instance, name, bad, tex
         inst.do_step(0.0, 1e-3)
     assert info.value.status == 2  # fmi2Discard
     assert any(text in line for line in inst.log), list(inst.log)
+
+
+@pytest.mark.parametrize("name", ["FrictionStribeck", "FrictionDahl", "FrictionPositionDependent",
+                                  "FrictionPreloadLoss", "FrictionBallToBall", "FrictionCoulomb"])
+@pytest.mark.parametrize("bad", [{"coefficient": math.nan}, {"coefficient": math.inf},
+                                 {"coefficient": -0.01}, {"rollers_per_groove": 0},
+                                 {"rollers_per_groove": -3}], ids=lambda b: f"{b}")
+def test_bad_shared_friction_parameter_discards_the_step_naming_it(instance, name, bad):
+    """The issue-21 probe: these FMUs stepped OK with F_friction 0.0 for the whole run."""
+    inst = instance(name, **bad)
+    with pytest.raises(FMICallException) as info:
+        inst.do_step(0.0, 1e-3)
+    assert info.value.status == 2  # fmi2Discard
+    assert any(next(iter(bad)) in line for line in inst.log), list(inst.log)
