@@ -222,13 +222,16 @@ def read_rig(path: Path) -> dict:
 
 
 def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
-    """data.csv as (time, {column: samples}, warnings) after checking every cell."""
+    """data.csv as (time, {column: samples}, warnings) after checking every cell. The rows are
+    parsed one at a time into a float array (8 bytes a cell), never held as Python strings: a
+    record of 1e6 rows would take over half a gigabyte as lists of cells."""
     source = str(path)
-    rows = list(csv.reader(io.StringIO(_text(path), newline="")))
-    if not rows:
+    text = _text(path)
+    reader = csv.reader(io.StringIO(text, newline=""))
+    header = [cell.strip() for cell in next(reader, [])]
+    if not header:
         raise ValueError(f"{source}: empty file, expected a header row starting with 'time'")
-    header = [cell.strip() for cell in rows[0]]
-    if not header or header[0] != "time":
+    if header[0] != "time":
         raise ValueError(f"{source}: row 1: the first column must be 'time', got {header[:1]}")
     seen = set()
     for name in header:
@@ -238,34 +241,40 @@ def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
     notes = [f"{source}: column {name!r} is not in the format's vocabulary; ignored"
              for name in header if name not in VOCABULARY]
     keep = [i for i, name in enumerate(header) if name in VOCABULARY]
-    body = rows[1:]
-    while body and not any(cell.strip() for cell in body[-1]):
-        body.pop()  # trailing blank lines
-    if len(body) < MIN_SAMPLES:
-        raise ValueError(f"{source}: needs at least {MIN_SAMPLES} data rows, got {len(body)}")
-    values = np.empty((len(body), len(keep)))
-    for i, cells in enumerate(body):
+    values = np.empty((text.count("\n") + 1, len(keep)))  # at most one row a line
+    count, blank = 0, 0  # rows read; blank rows since the last one with a cell
+    for row, cells in enumerate(reader, start=2):
+        if not any(cell.strip() for cell in cells):
+            blank += 1
+            continue
+        if blank:  # a blank line is only allowed at the end
+            raise ValueError(f"{source}: row {row - blank}: blank row (only the end of the "
+                             f"file may be blank)")
         if len(cells) != len(header):
-            raise ValueError(f"{source}: row {i + 2}: {len(cells)} cells, the header has "
+            raise ValueError(f"{source}: row {row}: {len(cells)} cells, the header has "
                              f"{len(header)}")
         for j, k in enumerate(keep):
-            text = cells[k].strip()
+            text_cell = cells[k].strip()
             try:
-                number = float(text)
+                number = float(text_cell)
             except ValueError:
                 number = None
             if number is None or not math.isfinite(number):
-                what = "empty cell" if not text else f"{text!r} is not a finite number"
-                raise ValueError(f"{source}: row {i + 2}, column '{header[k]}': {what}")
-            values[i, j] = number
+                what = "empty cell" if not text_cell else f"{text_cell!r} is not a finite number"
+                raise ValueError(f"{source}: row {row}, column '{header[k]}': {what}")
+            values[count, j] = number
+        count += 1
+    if count < MIN_SAMPLES:
+        raise ValueError(f"{source}: needs at least {MIN_SAMPLES} data rows, got {count}")
+    values = values[:count]
     time = values[:, 0]
     bad = np.flatnonzero(np.diff(time) <= 0.0)
     if bad.size:
         i = int(bad[0]) + 1
         raise ValueError(f"{source}: row {i + 2}, column 'time': must increase strictly, got "
                          f"{time[i]!r} after {time[i - 1]!r}")
-    columns = {header[k]: values[:, j] for j, k in enumerate(keep) if j > 0}
-    return time, columns, notes
+    columns = {header[k]: np.ascontiguousarray(values[:, j]) for j, k in enumerate(keep) if j > 0}
+    return np.ascontiguousarray(time), columns, notes
 
 
 def load_run(run_dir: str | Path) -> MeasuredRun:
