@@ -7,7 +7,6 @@ lines of data.csv, the header being row 1.
 from __future__ import annotations
 
 import csv
-import io
 import math
 import tomllib
 import warnings
@@ -222,12 +221,18 @@ def read_rig(path: Path) -> dict:
 
 
 def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
-    """data.csv as (time, {column: samples}, warnings) after checking every cell. The rows are
-    parsed one at a time into a float array (8 bytes a cell), never held as Python strings: a
-    record of 1e6 rows would take over half a gigabyte as lists of cells."""
+    """data.csv as (time, {column: samples}, warnings) after checking every cell. The file is
+    read line by line into a float array (8 bytes a cell), once its text is known to be UTF-8:
+    a record of 1e6 rows held as lists of cells took over half a gigabyte, as one string in a
+    text buffer 4 bytes a character."""
     source = str(path)
-    text = _text(path)
-    reader = csv.reader(io.StringIO(text, newline=""))
+    lines = _text(path).count("\n") + 1
+    with path.open(encoding="utf-8", newline="") as handle:
+        return _parse(source, csv.reader(handle), lines)
+
+
+def _parse(source: str, reader, lines: int) -> tuple[np.ndarray, dict, list]:
+    """:func:`read_data` on the rows of ``reader`` (at most ``lines`` of them)."""
     header = [cell.strip() for cell in next(reader, [])]
     if not header:
         raise ValueError(f"{source}: empty file, expected a header row starting with 'time'")
@@ -241,7 +246,7 @@ def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
     notes = [f"{source}: column {name!r} is not in the format's vocabulary; ignored"
              for name in header if name not in VOCABULARY]
     keep = [i for i, name in enumerate(header) if name in VOCABULARY]
-    values = np.empty((text.count("\n") + 1, len(keep)))  # at most one row a line
+    values = np.empty((lines, len(keep)))
     count, blank = 0, 0  # rows read; blank rows since the last one with a cell
     for row, cells in enumerate(reader, start=2):
         if not any(cell.strip() for cell in cells):
@@ -254,13 +259,13 @@ def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
             raise ValueError(f"{source}: row {row}: {len(cells)} cells, the header has "
                              f"{len(header)}")
         for j, k in enumerate(keep):
-            text_cell = cells[k].strip()
+            text = cells[k].strip()
             try:
-                number = float(text_cell)
+                number = float(text)
             except ValueError:
                 number = None
             if number is None or not math.isfinite(number):
-                what = "empty cell" if not text_cell else f"{text_cell!r} is not a finite number"
+                what = "empty cell" if not text else f"{text!r} is not a finite number"
                 raise ValueError(f"{source}: row {row}, column '{header[k]}': {what}")
             values[count, j] = number
         count += 1
@@ -278,7 +283,8 @@ def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
 
 
 def load_run(run_dir: str | Path) -> MeasuredRun:
-    """Read and check ``run_dir``/rig.toml and ``run_dir``/data.csv (ignored columns warn)."""
+    """Read and check ``run_dir``/rig.toml and ``run_dir``/data.csv (ignored columns and
+    unusual magnitudes warn; units that cannot be SI are refused: plausible.py)."""
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
         raise FileNotFoundError(f"{run_dir}: no such directory (a measured run is a directory "
