@@ -31,7 +31,6 @@ from ..physics.roller_friction import CoulombParams, coulomb_friction, regularis
 from .run_io import MeasuredRun
 from .signals import SIGN_WIDTH, Derivation, Motion, smooth_channel
 
-GRAVITY = 9.80665  # m/s^2
 SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
 
 
@@ -63,7 +62,7 @@ class Context:
     @classmethod
     def of(cls, run: MeasuredRun, motion: Motion) -> "Context":
         guideway = run.sections.get("guideway", {})
-        load = guideway.get("preload", 0.0) + run.moving_mass * GRAVITY + run.normal_force()
+        load = run.normal_load()
         fixed = run.moving_mass * motion.a if run.channel == "drive_force" else np.zeros_like(motion.a)
         limit = np.max(np.abs(motion.v)) * SIGN_WIDTH
         return cls(run, motion, np.asarray(run.columns[run.channel], dtype=float), fixed,

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..physics.carriage import STANDARD_GRAVITY
+from . import plausible
 FORMAT = "guideway-measured-run/1"
 KINDS = ("horizontal_drive", "vertical_response")
 #: data.csv columns of the format and their units
@@ -98,6 +100,12 @@ class MeasuredRun:
         if "normal_force" in self.columns:
             return float(np.mean(self.columns["normal_force"]))
         return float(self.sections.get("load", {}).get("normal_force", 0.0))
+
+    def normal_load(self) -> float:
+        """Total load [N] pressing the carriage onto the rail: the [guideway] preload, the
+        moving mass's weight and the external load (:meth:`normal_force`)."""
+        return (float(self.sections.get("guideway", {}).get("preload", 0.0))
+                + self.moving_mass * STANDARD_GRAVITY + self.normal_force())
 
 
 def _need_file(path: Path) -> Path:
@@ -312,9 +320,13 @@ def load_run(run_dir: str | Path) -> MeasuredRun:
     if not motion:
         raise ValueError(f"{source}: [channels] key 'inputs' must contain 'feed_position' or "
                          f"'feed_velocity' (the motion that drives the model)")
-    return MeasuredRun(path=run_dir, kind=kind, moving_mass=rig["rig"]["moving_mass"],
-                       model=rig["model"], inputs=list(rig["channels"]["inputs"]),
-                       outputs=list(rig["channels"]["outputs"]), time=time, columns=columns,
-                       sections=rig["sections"], description=str(rig["rig"].get("description", "")),
-                       warnings=notes, friction_sign=rig["channels"].get("friction_sign"),
-                       friction_sign_stated="friction_sign" in rig["channels"])
+    run = MeasuredRun(path=run_dir, kind=kind, moving_mass=rig["rig"]["moving_mass"],
+                      model=rig["model"], inputs=list(rig["channels"]["inputs"]),
+                      outputs=list(rig["channels"]["outputs"]), time=time, columns=columns,
+                      sections=rig["sections"], description=str(rig["rig"].get("description", "")),
+                      warnings=notes, friction_sign=rig["channels"].get("friction_sign"),
+                      friction_sign_stated="friction_sign" in rig["channels"])
+    for note in plausible.check(run):  # units: refused where impossible, else warned about
+        warnings.warn(note, stacklevel=2)
+        run.warnings.append(note)
+    return run
