@@ -260,7 +260,7 @@ def test_vertical_displacement_in_millimetres_is_refused_against_the_element_rad
 
 def test_slightly_inconsistent_derivative_and_slow_sampling_warn_naming_the_columns(tmp_path):
     with pytest.warns(UserWarning, match="'feed_position' and 'feed_velocity' disagree"):
-        run = load_run(_scaled_record(tmp_path, {"feed_velocity": 1.5}))
+        run = load_run(_scaled_record(tmp_path, {"feed_velocity": 1.5, "feed_acceleration": 1.5}))
     assert any("feed_velocity" in note for note in run.warnings)
     with pytest.warns(UserWarning, match="samples 0.2 s apart"):
         load_run(_scaled_record(tmp_path, {"time": 200.0}, with_velocity=False,
