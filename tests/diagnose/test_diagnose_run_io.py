@@ -237,6 +237,11 @@ def test_velocity_in_mm_per_second_is_refused(tmp_path):
                            with_acceleration=False), "data.csv", "'feed_velocity'", "mm/s")
 
 
+def test_velocity_against_the_position_sign_is_refused(tmp_path):
+    refused(_scaled_record(tmp_path, {"feed_velocity": -1.0, "feed_acceleration": -1.0}),
+            "data.csv", "'feed_position' and 'feed_velocity'", "opposite")
+
+
 def test_friction_force_in_millinewtons_is_refused_against_the_load(tmp_path):
     path = _friction_record(tmp_path, "run", 1.0, stated=False)
     text = (path / "data.csv").read_text().splitlines()

@@ -56,9 +56,10 @@ def _derivatives(run, source) -> list[str]:
         said = (f"{source}: columns '{name}' and '{rate}' disagree: over the record '{name}' "
                 f"changes by {gain:.3g} times the time integral of '{rate}' (1 in SI units)")
         if not AGREE[0] <= gain <= AGREE[1]:
+            k = _thousands(gain) if gain > 0.0 else 0
             cause = ("their signs are opposite" if gain < 0.0 else
                      {-1: f"looks like 'time' in milliseconds, or '{rate}' in millimetres",
-                      1: f"looks like '{name}' in millimetres"}.get(_thousands(gain))
+                      1: f"looks like '{name}' in millimetres"}.get(k)
                      or "one of them is not in the SI units of docs/measured-run.md")
             raise ValueError(f"{said}: {cause}")
         notes.append(f"{said}; the rig may filter one of them")
