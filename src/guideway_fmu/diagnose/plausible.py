@@ -25,7 +25,7 @@ MAX_FRICTION, HIGH_FRICTION = 1.0, 0.3  # friction over normal load: refused, wa
 #: micrometres; a tenth of the radius would crush the rolling elements
 MAX_DEFLECTION = 0.1
 SLOW_SAMPLING = 0.1  # s: a sampling interval above it is warned about
-SPEED_QUANTILE = 0.99  # of |feed_velocity|: its top speed, robust to a few spikes
+TOP = 0.99  # quantile of a channel's magnitude taken as its top: robust to a few spikes
 
 
 def _thousands(factor: float) -> int:
@@ -69,7 +69,7 @@ def _derivatives(run, source) -> list[str]:
 def _feed_scale(run, source) -> list[str]:
     notes = []
     if "feed_velocity" in run.columns:
-        speed = float(np.quantile(np.abs(run.columns["feed_velocity"]), SPEED_QUANTILE))
+        speed = float(np.quantile(np.abs(run.columns["feed_velocity"]), TOP))
         said = f"{source}: column 'feed_velocity' reaches {speed:.3g} m/s"
         if speed > MAX_SPEED:
             raise ValueError(f"{said}, faster than any linear guide runs ({MAX_SPEED:g} m/s): "
@@ -99,7 +99,7 @@ def _force_scale(run, source) -> list[str]:
     m a, which the file does not bound, so it is not checked."""
     if "friction_force" not in run.columns:
         return []
-    force = float(np.quantile(np.abs(run.columns["friction_force"]), SPEED_QUANTILE))
+    force = float(np.quantile(np.abs(run.columns["friction_force"]), TOP))
     load = run.normal_load()
     if load <= 0.0:
         return []
