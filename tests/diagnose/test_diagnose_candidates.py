@@ -52,3 +52,30 @@ def test_a_new_candidate_registers_by_being_defined():
         assert any(isinstance(c, Squeal) for c in candidates.candidates_for(run))
     finally:
         candidates.CANDIDATES.pop("squeal", None)
+
+
+@pytest.mark.parametrize("effect, cls", [("position_dependent_friction", candidates.PositionDependent),
+                                         ("ball_to_ball_contact", candidates.BallToBall)])
+def test_a_table_is_fitted_sparse_as_the_dense_least_squares_would(tmp_path, effect, cls):
+    # the dense design of a table took 8 bytes x samples x nodes (3.2 GB at 1e6 x 400)
+    import numpy as np
+    from scipy import sparse
+
+    from guideway_fmu.diagnose.decide import _splits, motion_of
+    from guideway_fmu.diagnose.run_io import load_run
+    truth.make_run(tmp_path / "run", effect, np.random.default_rng(7), n_samples=3000)
+    run = load_run(tmp_path / "run")
+    motion = motion_of(run)
+    ctx = candidates.Context.of(run, motion)
+    fit_mask = _splits(run, motion)[1][0][0]
+    table = cls()
+    for setting in table.settings(ctx)[:3]:
+        columns = table.columns(ctx, setting)
+        assert sparse.issparse(columns) and columns.nnz <= 2 * ctx.y.size
+        _, coef, _ = table._evaluate(ctx, fit_mask, setting)
+        dense = np.column_stack([columns.toarray(), np.ones(ctx.y.size)])[fit_mask]
+        penalty = table.penalty(sparse.csr_matrix(dense[:, :-1]))
+        rows = np.vstack([dense, np.column_stack([penalty, np.zeros(len(penalty))])])
+        rhs = np.r_[(ctx.y - ctx.fixed)[fit_mask], np.zeros(len(penalty))]
+        expected = np.linalg.lstsq(rows, rhs, rcond=None)[0]
+        assert np.allclose(coef, expected, rtol=1e-7, atol=1e-9 * np.abs(expected).max())

@@ -207,3 +207,66 @@ def test_a_file_that_is_not_utf8_names_its_line_and_byte(tmp_path, name):
     lines[2] = lines[2] + b" \xe9"  # a Latin-1 e-acute on line 3
     path.write_bytes(b"\n".join(lines))
     refused(run, name, "line 3", "byte 0xe9 is not UTF-8")
+
+
+# -- units: refused where they cannot be SI, warned about where unusual --------------------------
+def _scaled_record(tmp_path, scale: dict, **knobs):
+    """A first-generator record with the columns of ``scale`` multiplied by their factors."""
+    from guideway_fmu.diagnose import truth
+    run = truth.simulate("none", np.random.default_rng(5), n_samples=2000, **knobs)
+    columns = {k: v * scale.get(k, 1.0) for k, v in run.columns.items()}
+    return truth.write_run(tmp_path / "run", replace(run, columns=columns))
+
+
+@pytest.mark.parametrize("knobs", [{}, {"with_position": False, "with_acceleration": False}])
+def test_time_in_milliseconds_is_refused_naming_the_likely_unit(tmp_path, knobs):
+    # before: read as seconds, the record was diagnosed as unmodeled_mass with confidence 1
+    refused(_scaled_record(tmp_path, {"time": 1e3}, **knobs), "data.csv", "'time'",
+            "milliseconds")
+
+
+def test_position_in_millimetres_is_refused_naming_the_column(tmp_path):
+    refused(_scaled_record(tmp_path, {"feed_position": 1e3}), "data.csv", "'feed_position'",
+            "millimetres")
+    refused(_scaled_record(tmp_path, {"feed_position": 1e3}, with_velocity=False,
+                           with_acceleration=False), "data.csv", "'feed_position'", "millimetres")
+
+
+def test_velocity_in_mm_per_second_is_refused(tmp_path):
+    refused(_scaled_record(tmp_path, {"feed_velocity": 1e3}, with_position=False,
+                           with_acceleration=False), "data.csv", "'feed_velocity'", "mm/s")
+
+
+def test_velocity_against_the_position_sign_is_refused(tmp_path):
+    refused(_scaled_record(tmp_path, {"feed_velocity": -1.0, "feed_acceleration": -1.0}),
+            "data.csv", "'feed_position' and 'feed_velocity'", "opposite")
+
+
+def test_friction_force_in_millinewtons_is_refused_against_the_load(tmp_path):
+    path = _friction_record(tmp_path, "run", 1.0, stated=False)
+    text = (path / "data.csv").read_text().splitlines()
+    rows = [",".join(cells[:-1] + [f"{1e3 * float(cells[-1]):.3f}"])
+            for cells in (line.split(",") for line in text[1:])]
+    (path / "data.csv").write_text("\n".join(text[:1] + rows) + "\n")
+    refused(path, "data.csv", "'friction_force'", "normal load", "mN")
+
+
+def test_vertical_displacement_in_millimetres_is_refused_against_the_element_radius(tmp_path):
+    rig = RIG.replace('"horizontal_drive"', '"vertical_response"').replace(
+        '["drive_force"]', '["vertical_displacement"]') + "[guideway]\nelement_radius = 2.5e-3\n"
+    t = np.arange(60) * 1e-3
+    rows = [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},{1e-3 * np.sin(900 * a):.6f}" for a in t]  # 1 um in mm
+    path = write(tmp_path, rig=rig, rows=rows, header="time,feed_velocity,vertical_displacement")
+    refused(path, "data.csv", "'vertical_displacement'", "element_radius", "mm")
+    rows = [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},{1e-6 * np.sin(900 * a):.9f}" for a in t]
+    assert load_run(write(tmp_path, rig=rig, rows=rows,
+                          header="time,feed_velocity,vertical_displacement")).time.size == 60
+
+
+def test_slightly_inconsistent_derivative_and_slow_sampling_warn_naming_the_columns(tmp_path):
+    with pytest.warns(UserWarning, match="'feed_position' and 'feed_velocity' disagree"):
+        run = load_run(_scaled_record(tmp_path, {"feed_velocity": 1.5, "feed_acceleration": 1.5}))
+    assert any("feed_velocity" in note for note in run.warnings)
+    with pytest.warns(UserWarning, match="samples 0.2 s apart"):
+        load_run(_scaled_record(tmp_path, {"time": 200.0}, with_velocity=False,
+                                with_acceleration=False))

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from itertools import combinations_with_replacement
 
 import numpy as np
+from scipy import sparse
 from scipy.optimize import lsq_linear, minimize_scalar
 
 from ..physics import ball_row, friction_effects
@@ -30,7 +31,6 @@ from ..physics.roller_friction import CoulombParams, coulomb_friction, regularis
 from .run_io import MeasuredRun
 from .signals import SIGN_WIDTH, Derivation, Motion, smooth_channel
 
-GRAVITY = 9.80665  # m/s^2
 SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
 
 
@@ -62,7 +62,7 @@ class Context:
     @classmethod
     def of(cls, run: MeasuredRun, motion: Motion) -> "Context":
         guideway = run.sections.get("guideway", {})
-        load = guideway.get("preload", 0.0) + run.moving_mass * GRAVITY + run.normal_force()
+        load = run.normal_load()
         fixed = run.moving_mass * motion.a if run.channel == "drive_force" else np.zeros_like(motion.a)
         limit = np.max(np.abs(motion.v)) * SIGN_WIDTH
         return cls(run, motion, np.asarray(run.columns[run.channel], dtype=float), fixed,
@@ -91,6 +91,26 @@ class Fit:
     rig_mass: float
     offset: float
     uses_position: bool  # the friction FMU takes the feed position x
+
+
+def with_offset(columns):
+    """The design: ``columns`` (dense, or sparse for a table) and a column of ones (the offset)."""
+    ones = np.ones((columns.shape[0], 1))
+    if sparse.issparse(columns):
+        return sparse.hstack([columns, ones], format="csr")
+    return np.column_stack([columns, ones])
+
+
+def least_squares(rows, rhs, penalty) -> np.ndarray:
+    """Coefficients c minimising |rows c - rhs|^2 + |penalty c|^2: by numpy's lstsq, or where
+    ``rows`` is sparse (a table's hat columns, two nonzeros a row) by its normal equations, whose
+    Gram matrix (k x k) is formed without the dense n x k matrix (1e6 samples x 400 nodes:
+    3.2 GB); the table's smoothness penalty keeps it well conditioned."""
+    if sparse.issparse(rows):
+        gram = (rows.T @ rows).toarray() + penalty.T @ penalty
+        return np.linalg.lstsq(gram, rows.T @ rhs, rcond=None)[0]
+    return np.linalg.lstsq(np.vstack([rows, penalty]), np.r_[rhs, np.zeros(len(penalty))],
+                           rcond=None)[0]
 
 
 #: effect name -> candidate class, in the order of definition (the order of ties in the ranking)
@@ -149,9 +169,10 @@ class Candidate:
         the record); the workflow adds them to the named effect's parameters."""
         return {}
 
-    def penalty(self, columns: np.ndarray) -> np.ndarray | None:
-        """Rows appended to the least-squares system (regularisation), or None."""
-        return None
+    def penalty(self, columns) -> np.ndarray:
+        """Rows appended to the least-squares system with a zero right-hand side
+        (regularisation); none by default."""
+        return np.zeros((0, columns.shape[1]))
 
     @staticmethod
     def _coulomb(ctx, level):
@@ -162,14 +183,11 @@ class Candidate:
     def _evaluate(self, ctx: Context, fit_mask: np.ndarray, setting: dict):
         """(BIC on the fit samples, coefficients, design) of one setting."""
         target = ctx.y - ctx.fixed
-        design = np.column_stack([self.columns(ctx, setting), np.ones_like(target)])
+        design = with_offset(self.columns(ctx, setting))
         rows, rhs = design[fit_mask], target[fit_mask]
         penalty = self.penalty(rows[:, :-1])
-        if penalty is not None:
-            rows = np.vstack([rows, np.column_stack([penalty, np.zeros(len(penalty))])])
-            rhs = np.concatenate([rhs, np.zeros(len(penalty))])
-        coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
-        rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
+        coef = least_squares(rows, rhs, np.column_stack([penalty, np.zeros(len(penalty))]))
+        rss = float(np.sum((rows @ coef - rhs) ** 2))
         return self._bic(rss, int(fit_mask.sum()), self.dof(coef, setting)), coef, design
 
     def dof(self, coef: np.ndarray, setting: dict) -> int:
@@ -330,7 +348,7 @@ class PreslidingHysteresis(Candidate):
         g, b = gram[np.ix_(pick, pick)], rhs[pick]
         coef = np.linalg.lstsq(g, b, rcond=None)[0]  # a state may repeat another or the ones
         rss = float(power - 2.0 * coef @ b + coef @ g @ coef)
-        design = np.column_stack([self.columns(ctx, setting), np.ones(ctx.y.size)])
+        design = with_offset(self.columns(ctx, setting))
         return self._bic(rss, int(fit_mask.sum()), design.shape[1] + len(setting)), coef, design
 
     @staticmethod
@@ -373,15 +391,25 @@ class _Table(Candidate):
         return [{"nodes": k} for k in self.node_counts(ctx)]
 
     def columns(self, ctx, setting):
+        """Sparse (n, nodes): the law at the unit factor of each node, nonzero between its
+        neighbours only (dense, 1e6 samples x 400 nodes would take 3.2 GB)."""
         s = self.along(ctx)
-        unit = np.eye(setting["nodes"])
-        return np.column_stack([-self.law(ctx.motion.v, s, 1.0, s.min(), s.max(), row,
-                                          ctx.velocity_tolerance) for row in unit])
+        at, node, value = [], [], []
+        for k, row in enumerate(np.eye(setting["nodes"])):
+            column = -self.law(ctx.motion.v, s, 1.0, s.min(), s.max(), row,
+                               ctx.velocity_tolerance)
+            nonzero = np.flatnonzero(column)
+            at.append(nonzero)
+            node.append(np.full(nonzero.size, k))
+            value.append(column[nonzero])
+        return sparse.csr_matrix((np.concatenate(value), (np.concatenate(at),
+                                                          np.concatenate(node))),
+                                 shape=(s.size, setting["nodes"]))
 
     def penalty(self, columns):
         """Second differences of the node values, weighted by SMOOTHING of the columns' mean
         square: nodes the fit samples do not reach follow their neighbours linearly."""
-        weight = np.sqrt(SMOOTHING * np.mean(np.sum(columns**2, axis=0)))
+        weight = np.sqrt(SMOOTHING * float(columns.multiply(columns).sum()) / columns.shape[1])
         return weight * np.diff(np.eye(columns.shape[1]), 2, axis=0)
 
     def physical(self, ctx, setting, coef):
@@ -470,7 +498,7 @@ class PreloadLoss(Candidate):
         if setting["law"] != "table":
             return super()._evaluate(ctx, fit_mask, setting)
         target = ctx.y - ctx.fixed
-        design = np.column_stack([self.columns(ctx, setting), np.ones_like(target)])
+        design = with_offset(self.columns(ctx, setting))
         lower = np.r_[-np.inf, np.zeros(design.shape[1] - 2), -np.inf]
         coef = lsq_linear(design[fit_mask], target[fit_mask], bounds=(lower, np.inf)).x
         rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))

@@ -161,9 +161,10 @@ def peak_frequencies(time, residual, mask, count: int = 3) -> list[float]:
     t, r = np.asarray(time)[mask], np.asarray(residual)[mask]
     r = r - r.mean()
     refined = []
-    for f in found:
+    for f in found:  # one trial at a time: scipy's periodogram holds samples x trials arrays
         trial = np.linspace(f - freq[1], f + freq[1], REFINE)
-        refined.append(float(trial[np.argmax(lombscargle(t, r, 2.0 * np.pi * trial))]))
+        power = [lombscargle(t, r, np.full(1, 2.0 * np.pi * w)).item() for w in trial]
+        refined.append(float(trial[np.argmax(power)]))
     return refined
 
 

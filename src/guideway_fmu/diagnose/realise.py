@@ -22,15 +22,18 @@ from .decide import Naming
 from .signals import sampling_step
 
 RIG_FMUS = ("FeedKinematics", "HorizontalRig")
+CHUNK = 65536  # rows of the replay table turned into Python floats at a time
 
 
 def write_replay(m, path: Path) -> Path:
     """The motion ``m`` (signals.Motion) the model is driven with, as the FeedKinematics replay
     table, along its path (Motion.path: a reversal inside a dropout is travelled)."""
+    table = np.column_stack(m.path()[:4])
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["time", "feed_position", "feed_velocity", "feed_acceleration"])
-        writer.writerows(np.column_stack(m.path()[:4]).tolist())
+        for start in range(0, len(table), CHUNK):  # as Python floats a chunk at a time
+            writer.writerows(table[start:start + CHUNK].tolist())
     return path
 
 

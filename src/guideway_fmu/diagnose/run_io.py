@@ -7,7 +7,6 @@ lines of data.csv, the header being row 1.
 from __future__ import annotations
 
 import csv
-import io
 import math
 import tomllib
 import warnings
@@ -16,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..physics.carriage import STANDARD_GRAVITY
+from . import plausible
 FORMAT = "guideway-measured-run/1"
 KINDS = ("horizontal_drive", "vertical_response")
 #: data.csv columns of the format and their units
@@ -99,6 +100,12 @@ class MeasuredRun:
         if "normal_force" in self.columns:
             return float(np.mean(self.columns["normal_force"]))
         return float(self.sections.get("load", {}).get("normal_force", 0.0))
+
+    def normal_load(self) -> float:
+        """Total load [N] pressing the carriage onto the rail: the [guideway] preload, the
+        moving mass's weight and the external load (:meth:`normal_force`)."""
+        return (float(self.sections.get("guideway", {}).get("preload", 0.0))
+                + self.moving_mass * STANDARD_GRAVITY + self.normal_force())
 
 
 def _need_file(path: Path) -> Path:
@@ -222,13 +229,22 @@ def read_rig(path: Path) -> dict:
 
 
 def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
-    """data.csv as (time, {column: samples}, warnings) after checking every cell."""
+    """data.csv as (time, {column: samples}, warnings) after checking every cell. The file is
+    read line by line into a float array (8 bytes a cell), once its text is known to be UTF-8:
+    a record of 1e6 rows held as lists of cells took over half a gigabyte, as one string in a
+    text buffer 4 bytes a character."""
     source = str(path)
-    rows = list(csv.reader(io.StringIO(_text(path), newline="")))
-    if not rows:
+    lines = _text(path).count("\n") + 1
+    with path.open(encoding="utf-8", newline="") as handle:
+        return _parse(source, csv.reader(handle), lines)
+
+
+def _parse(source: str, reader, lines: int) -> tuple[np.ndarray, dict, list]:
+    """:func:`read_data` on the rows of ``reader`` (at most ``lines`` of them)."""
+    header = [cell.strip() for cell in next(reader, [])]
+    if not header:
         raise ValueError(f"{source}: empty file, expected a header row starting with 'time'")
-    header = [cell.strip() for cell in rows[0]]
-    if not header or header[0] != "time":
+    if header[0] != "time":
         raise ValueError(f"{source}: row 1: the first column must be 'time', got {header[:1]}")
     seen = set()
     for name in header:
@@ -238,15 +254,17 @@ def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
     notes = [f"{source}: column {name!r} is not in the format's vocabulary; ignored"
              for name in header if name not in VOCABULARY]
     keep = [i for i, name in enumerate(header) if name in VOCABULARY]
-    body = rows[1:]
-    while body and not any(cell.strip() for cell in body[-1]):
-        body.pop()  # trailing blank lines
-    if len(body) < MIN_SAMPLES:
-        raise ValueError(f"{source}: needs at least {MIN_SAMPLES} data rows, got {len(body)}")
-    values = np.empty((len(body), len(keep)))
-    for i, cells in enumerate(body):
+    values = np.empty((lines, len(keep)))
+    count, blank = 0, 0  # rows read; blank rows since the last one with a cell
+    for row, cells in enumerate(reader, start=2):
+        if not any(cell.strip() for cell in cells):
+            blank += 1
+            continue
+        if blank:  # a blank line is only allowed at the end
+            raise ValueError(f"{source}: row {row - blank}: blank row (only the end of the "
+                             f"file may be blank)")
         if len(cells) != len(header):
-            raise ValueError(f"{source}: row {i + 2}: {len(cells)} cells, the header has "
+            raise ValueError(f"{source}: row {row}: {len(cells)} cells, the header has "
                              f"{len(header)}")
         for j, k in enumerate(keep):
             text = cells[k].strip()
@@ -256,20 +274,25 @@ def read_data(path: Path) -> tuple[np.ndarray, dict, list]:
                 number = None
             if number is None or not math.isfinite(number):
                 what = "empty cell" if not text else f"{text!r} is not a finite number"
-                raise ValueError(f"{source}: row {i + 2}, column '{header[k]}': {what}")
-            values[i, j] = number
+                raise ValueError(f"{source}: row {row}, column '{header[k]}': {what}")
+            values[count, j] = number
+        count += 1
+    if count < MIN_SAMPLES:
+        raise ValueError(f"{source}: needs at least {MIN_SAMPLES} data rows, got {count}")
+    values = values[:count]
     time = values[:, 0]
     bad = np.flatnonzero(np.diff(time) <= 0.0)
     if bad.size:
         i = int(bad[0]) + 1
         raise ValueError(f"{source}: row {i + 2}, column 'time': must increase strictly, got "
                          f"{time[i]!r} after {time[i - 1]!r}")
-    columns = {header[k]: values[:, j] for j, k in enumerate(keep) if j > 0}
-    return time, columns, notes
+    columns = {header[k]: np.ascontiguousarray(values[:, j]) for j, k in enumerate(keep) if j > 0}
+    return np.ascontiguousarray(time), columns, notes
 
 
 def load_run(run_dir: str | Path) -> MeasuredRun:
-    """Read and check ``run_dir``/rig.toml and ``run_dir``/data.csv (ignored columns warn)."""
+    """Read and check ``run_dir``/rig.toml and ``run_dir``/data.csv (ignored columns and
+    unusual magnitudes warn; units that cannot be SI are refused: plausible.py)."""
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
         raise FileNotFoundError(f"{run_dir}: no such directory (a measured run is a directory "
@@ -297,9 +320,13 @@ def load_run(run_dir: str | Path) -> MeasuredRun:
     if not motion:
         raise ValueError(f"{source}: [channels] key 'inputs' must contain 'feed_position' or "
                          f"'feed_velocity' (the motion that drives the model)")
-    return MeasuredRun(path=run_dir, kind=kind, moving_mass=rig["rig"]["moving_mass"],
-                       model=rig["model"], inputs=list(rig["channels"]["inputs"]),
-                       outputs=list(rig["channels"]["outputs"]), time=time, columns=columns,
-                       sections=rig["sections"], description=str(rig["rig"].get("description", "")),
-                       warnings=notes, friction_sign=rig["channels"].get("friction_sign"),
-                       friction_sign_stated="friction_sign" in rig["channels"])
+    run = MeasuredRun(path=run_dir, kind=kind, moving_mass=rig["rig"]["moving_mass"],
+                      model=rig["model"], inputs=list(rig["channels"]["inputs"]),
+                      outputs=list(rig["channels"]["outputs"]), time=time, columns=columns,
+                      sections=rig["sections"], description=str(rig["rig"].get("description", "")),
+                      warnings=notes, friction_sign=rig["channels"].get("friction_sign"),
+                      friction_sign_stated="friction_sign" in rig["channels"])
+    for note in plausible.check(run):  # units: refused where impossible, else warned about
+        warnings.warn(note, stacklevel=2)
+        run.warnings.append(note)
+    return run

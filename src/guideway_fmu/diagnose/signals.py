@@ -63,6 +63,7 @@ SEGMENT = 512  # samples of denoise_spectrum's windows (98-390 Hz bins at 50-200
 SHORTEST_SEGMENT = 16  # samples of its windows on a short record
 GAP = 1.5  # intervals over this many nominal steps are filled in Motion.path
 CLUSTER = 0.1  # samples closer than this many grid steps are averaged before interpolation
+CHUNK = 65536  # windows of the lack-of-fit test evaluated at a time
 
 
 def noise_rms(y, order: int = 2) -> float:
@@ -417,9 +418,13 @@ def _unresolved(grid: _Grid, on_grid, window, sigma) -> np.ndarray:
     half = window // 2
     basis = np.vander((np.arange(window) - half) / half, ORDER + 1, increasing=True)
     maker = np.eye(window) - basis @ np.linalg.pinv(basis)  # residuals of the polynomial fit
-    windows = np.lib.stride_tricks.sliding_window_view(on_grid, window)
-    windows = windows - windows[:, half:half + 1]  # the excursion: a position's size would
-    squares = np.sum((windows @ maker) * windows, axis=1) / sigma ** 2  # swamp eps x^2
+    windows = np.lib.stride_tricks.sliding_window_view(on_grid, window)  # a view: no copy
+    squares = np.empty(windows.shape[0])
+    for start in range(0, windows.shape[0], CHUNK):  # CHUNK windows at a time: all of them,
+        part = windows[start:start + CHUNK]  # 1e6 x 101 samples, would take 0.8 GB a copy
+        part = part - part[:, half:half + 1]  # the excursion: a position's size would
+        squares[start:start + CHUNK] = np.sum((part @ maker) * part, axis=1)  # swamp eps x^2
+    squares /= sigma ** 2
     flagged[half:on_grid.size - half] = squares > chi2.ppf(1.0 - LACK_OF_FIT, window - ORDER - 1)
     return np.interp(grid.at, grid.grid, flagged.astype(float)) > 0.0
 

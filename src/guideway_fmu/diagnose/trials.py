@@ -11,6 +11,7 @@ FMUs loaded into the process, so tests and benchmarks run a batch in a child pro
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import time as clock
@@ -46,6 +47,21 @@ def run_batch(root, fmu_dir, trials: list[dict], timeout: float | None = None) -
     if done.returncode != 0:
         raise RuntimeError(f"trials {[t['name'] for t in trials]} failed:\n{done.stderr[-3000:]}")
     return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def diagnose_in_child(run_dir, out_dir, fmu_dir) -> tuple[dict, float]:
+    """(diagnosis.json's content, peak resident set size [bytes]) of ``guideway-fmu diagnose``
+    run in a child process, its peak read by os.wait4 when it ends (Linux: ru_maxrss in kB).
+    Raises RuntimeError with the end of the child's error output if it fails."""
+    child = subprocess.Popen([sys.executable, "-m", "guideway_fmu.cli", "diagnose", str(run_dir),
+                              "--out", str(out_dir), "--fmus", str(fmu_dir)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    error = child.stderr.read().decode(errors="replace")
+    _, status, usage = os.wait4(child.pid, 0)
+    child.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
+    if child.returncode != 0:
+        raise RuntimeError(f"diagnose {run_dir} failed:\n{error[-3000:]}")
+    return json.loads((Path(out_dir) / "diagnosis.json").read_text()), usage.ru_maxrss * 1024.0
 
 
 def main(argv=None) -> None:

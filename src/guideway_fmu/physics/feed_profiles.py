@@ -257,35 +257,43 @@ def read_csv_columns(path, columns):
     number of every data row (header = row 1; blank lines are skipped).
 
     ``columns`` lists what to read; an entry that is a tuple of alternative names reads the
-    first of them the header has. Errors name the file, the row and the column.
+    first of them the header has. Errors name the file, the row and the column. The rows are
+    read one at a time into a float array (a replay of 1e6 samples held as lists of cells
+    took a third of a gigabyte).
     """
     path = Path(path)
+    with path.open("rb") as handle:
+        lines = sum(chunk.count(b"\n") for chunk in iter(lambda: handle.read(1 << 20), b"")) + 1
     with path.open(newline="") as handle:
-        rows = [(n, cells) for n, cells in enumerate(csv.reader(handle), start=1)
-                if any(cell.strip() for cell in cells)]
-    header_row, header = (rows[0][0], [c.strip() for c in rows[0][1]]) if rows else (1, [])
-    chosen = []
-    for entry in columns:
-        names = entry if isinstance(entry, tuple) else (entry,)
-        name = next((n for n in names if n in header), None)
-        if name is None:
-            wanted = " or ".join(repr(n) for n in names)
-            raise ValueError(f"{path}: row {header_row}: header {header} has no column {wanted}")
-        chosen.append(name)
-    data = rows[1:]
-    if len(data) < 2:
-        raise ValueError(f"{path}: needs at least 2 data rows, got {len(data)}")
-    values = np.empty((len(data), len(chosen)))
-    for i, (row, cells) in enumerate(data):
-        for j, name in enumerate(chosen):
-            k = header.index(name)
-            cell = cells[k].strip() if k < len(cells) else ""
-            try:
-                values[i, j] = float(cell)
-            except ValueError:
-                raise ValueError(f"{path}: row {row}, column '{name}': "
-                                 f"cannot read a number from {cell!r}") from None
-    return dict(zip(chosen, values.T)), [row for row, _ in data]
+        rows = ((n, cells) for n, cells in enumerate(csv.reader(handle), start=1)
+                if any(cell.strip() for cell in cells))
+        header_row, header = next(rows, (1, []))
+        header = [c.strip() for c in header]
+        chosen = []
+        for entry in columns:
+            names = entry if isinstance(entry, tuple) else (entry,)
+            name = next((n for n in names if n in header), None)
+            if name is None:
+                wanted = " or ".join(repr(n) for n in names)
+                raise ValueError(f"{path}: row {header_row}: header {header} has no column {wanted}")
+            chosen.append(name)
+        values = np.empty((lines, len(chosen)))
+        numbers = np.empty(lines, dtype=int)
+        count = 0
+        for row, cells in rows:
+            for j, name in enumerate(chosen):
+                k = header.index(name)
+                cell = cells[k].strip() if k < len(cells) else ""
+                try:
+                    values[count, j] = float(cell)
+                except ValueError:
+                    raise ValueError(f"{path}: row {row}, column '{name}': "
+                                     f"cannot read a number from {cell!r}") from None
+            numbers[count] = row
+            count += 1
+    if count < 2:
+        raise ValueError(f"{path}: needs at least 2 data rows, got {count}")
+    return dict(zip(chosen, values[:count].T.copy())), numbers[:count]
 
 
 def check_csv_columns(path, columns: dict, rows: list, time: str):

@@ -1,0 +1,21 @@
+"""The memory of ``guideway-fmu diagnose`` on a long record stays bounded (issue 21): a record
+of 1e6 rows took 7.55 GB of peak RSS; benchmarks/diagnose_memory.py writes the figures."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from guideway_fmu.diagnose import truth
+from guideway_fmu.diagnose.trials import diagnose_in_child
+
+pytestmark = pytest.mark.slow  # minutes: a million samples decided and co-simulated
+
+BOUND = 2e9  # bytes of peak resident set size at 1e6 rows
+
+
+def test_a_million_rows_are_diagnosed_within_two_gigabytes(tmp_path, fmu_dir):
+    info = truth.make_run(tmp_path / "run", "presliding_hysteresis", np.random.default_rng(3),
+                          n_samples=1_000_000)
+    diagnosis, peak = diagnose_in_child(tmp_path / "run", tmp_path / "out", fmu_dir)
+    assert peak < BOUND, f"peak RSS {peak / 1e9:.2f} GB"
+    assert diagnosis["missing_effect"] == info.expected
