@@ -2,7 +2,7 @@
 the master reports it with the FMU's message and the time, writes what it recorded, and makes no
 further call into any instance, which FMI forbids and which crashed the process (exit 139,
 20 of 20 runs) after every file was written. Runs in child processes: a crash is the failure.
-The probe FMU `Faulty` is in conftest.py."""
+The probe FMU `Faulty` is in tests/conftest.py."""
 from __future__ import annotations
 
 import os

@@ -2,7 +2,7 @@
 running ``guideway-fmu run``: the rows computed so far are in results.csv, summary.json and
 stderr name the cause and the time, the exit status tells which (130, 143, 124), and no folder
 an FMU was unpacked into is left in the child's TMPDIR. The probe FMU `Faulty` is in
-conftest.py."""
+tests/conftest.py."""
 from __future__ import annotations
 
 import json
