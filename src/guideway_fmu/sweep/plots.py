@@ -32,7 +32,7 @@ def plot_outputs(results_json: Path, out: Path) -> list[Path]:
                 key = tuple(p["parameters"][n] for n in others)
                 groups.setdefault(key, []).append((p["parameters"][name], p["outputs"][column]))
             lines = len(groups) <= MAX_LINES and all(len(g) > 1 for g in groups.values())
-            for key, xy in sorted(groups.items(), key=lambda item: str(item[0])):
+            for key, xy in sorted(groups.items()):
                 xy.sort(key=lambda pair: pair[0])
                 label = ", ".join(f"{n} = {v:g}" if isinstance(v, (int, float)) else f"{n} = {v}"
                                   for n, v in zip(others, key))

@@ -2,13 +2,15 @@
 they finish; a failed point (an error, or a worker that died under it) is retried once, then
 recorded as failed with its error, and the sweep goes on.
 
-Worker processes, one thread each: the FMUs are not thread-safe. The local cluster fails a point
-at once when its worker dies (``allowed-failures`` 0) and gives each worker one point at a time
-(``worker-saturation`` 1.0), so a death blames only the point that caused it.
+Worker processes, one thread each: the FMUs are not thread-safe. No more points are handed out
+than the cluster has threads, so a worker holds only the point it runs, and the local cluster
+fails a point at once when its worker dies (``allowed-failures`` 0): a death blames only the
+point that was running there.
 """
 from __future__ import annotations
 
 import contextlib
+from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -21,8 +23,7 @@ from .sweep_file import Sweep
 from .table import ResultsTable
 
 ATTEMPTS = 2  # a failed point is run once more before it is recorded as failed
-LOCAL_CLUSTER = {"distributed.scheduler.allowed-failures": 0,
-                 "distributed.scheduler.worker-saturation": 1.0}
+LOCAL_CLUSTER = {"distributed.scheduler.allowed-failures": 0}
 
 
 @dataclass
@@ -61,19 +62,21 @@ def run_sweep(sweep: Sweep, out: Path, client: Client, resume: bool = False,
     out = Path(out)
     table = ResultsTable(sweep, out)
     done = table.open(resume)
-    todo = [i for i, point_id in enumerate(sweep.ids) if point_id not in done]
+    todo = deque(i for i, point_id in enumerate(sweep.ids) if point_id not in done)
     outcome = Outcome(len(sweep.points), len(sweep.points) - len(todo), 0, 0, 0, [])
     attempt, index_of, futures = {}, {}, as_completed()
+    slots = max(1, sum(client.nthreads().values()))
 
-    def submit(index: int) -> None:
-        attempt[index] = attempt.get(index, 0) + 1
-        key = f"point-{sweep.ids[index]}-{attempt[index]}"
-        index_of[key] = index
-        futures.add(client.submit(run_point, sweep.system, sweep.points[index], sweep.outputs,
-                                  key=key, pure=False))
+    def submit() -> None:  # the next points, as many as there are free threads
+        while todo and len(index_of) < slots:
+            index = todo.popleft()
+            attempt[index] = attempt.get(index, 0) + 1
+            key = f"point-{sweep.ids[index]}-{attempt[index]}"
+            index_of[key] = index
+            futures.add(client.submit(run_point, sweep.system, sweep.points[index],
+                                      sweep.outputs, key=key, pure=False))
 
-    for index in todo:
-        submit(index)
+    submit()
     bar = tqdm(total=len(sweep.points), initial=outcome.skipped, unit="point", desc=sweep.path.stem,
                disable=not progress)
     try:
@@ -84,7 +87,8 @@ def run_sweep(sweep: Sweep, out: Path, client: Client, resume: bool = False,
             except Exception as exc:  # noqa: BLE001 - whatever the point raised, or KilledWorker
                 if attempt[index] < ATTEMPTS:
                     outcome.retried += 1
-                    submit(index)
+                    todo.appendleft(index)
+                    submit()
                     continue
                 table.append(index, None, attempt[index], None, f"{type(exc).__name__}: {exc}")
                 outcome.failed += 1
@@ -93,6 +97,7 @@ def run_sweep(sweep: Sweep, out: Path, client: Client, resume: bool = False,
                 outcome.ok += 1
             future.release()
             bar.update(1)
+            submit()
     finally:
         bar.close()
         table.close()
