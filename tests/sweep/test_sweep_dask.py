@@ -1,7 +1,10 @@
 """Sweeps on a real dask.distributed LocalCluster of two worker processes: the same numbers as a
 serial run, a worker killed under a point, a failing point, an interrupted sweep resumed."""
 import csv
+import json
 import os
+import subprocess
+import sys
 import threading
 import time
 
@@ -99,3 +102,16 @@ def test_resume_runs_only_the_points_missing_from_the_table(client, write_sweep,
     assert sorted(ids) == sorted(sweep.ids)  # each point once: none repeated, none lost
     again = run.run_sweep(sweep, out, client, resume=True, progress=False, plot=False)
     assert (again.skipped, again.ok) == (4, 0)
+
+
+def test_the_command_runs_a_sweep_on_its_own_cluster(write_sweep, fmu_dir, tmp_path):
+    path = write_sweep('[design]\nkind = "factorial"\n[design.values]\n'
+                       '"Carriage.load_frequency" = [2500.0, 4500.0]\n')
+    run_ = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "sweep", str(path), "--out",
+                           str(tmp_path / "out"), "--fmus", str(fmu_dir), "--workers", "1",
+                           "--no-progress"], capture_output=True, text=True, timeout=300)
+    assert run_.returncode == 0, run_.stderr[-3000:]
+    assert json.loads(run_.stdout)["ok"] == 2
+    results = json.loads((tmp_path / "out" / "results.json").read_text())
+    assert [p["parameters"]["Carriage.load_frequency"] for p in results["points"]] == [2500.0, 4500.0]
+    assert results["outputs"][2]["unit"] == "Hz" and results["outputs"][0]["unit"] == "N"
