@@ -66,3 +66,9 @@ def test_the_command_reports_a_bad_sweep_file_and_exits_2(write_sweep, fmu_dir, 
     assert code == 2
     assert "guideway-fmu sweep: error:" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()  # refused before any point ran
+
+
+def test_an_experiment_change_the_scenario_refuses_is_named(write_sweep, fmu_dir):
+    with pytest.raises(ScenarioError, match=r"sweep.toml: \[experiment\] key 'stop': the scenario "
+                       r"refuses it: .*\[experiment\] key 'step': must be > 0 and <= stop - start"):
+        sweep_file.load(write_sweep(FACTORIAL, stop=1e-6), fmu_dir)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from .. import scenarios
 from ..cosim import master
-from ..cosim.system import Experiment, ScenarioError, System, _Table, load as load_scenario
+from ..cosim.system import Experiment, ScenarioError, System, TomlTable, load as load_scenario
 from . import design
 from .reduce import REDUCTIONS, Output
 
@@ -53,10 +53,10 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> Sweep:
         raise ScenarioError(f"{src}: cannot read the sweep file: {exc.strerror or exc}") from exc
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{src}: not valid TOML: {exc}") from exc
-    top = _Table(src, "top level", data)
+    top = TomlTable(src, "top level", data)
     top.unknown(("scenario", "description", "experiment", "design", "outputs"))
     system = _scenario(top, path, fmu_dir)
-    table = _Table(src, "design", top.get("design", dict, required=True))
+    table = TomlTable(src, "design", top.get("design", dict, required=True))
     kind = table.get("kind", str, required=True)
     if kind not in KINDS:
         raise table.error("kind", f"must be one of {', '.join(KINDS)}, got {kind!r}")
@@ -70,7 +70,7 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> Sweep:
     return Sweep(path, system, kind, tuple(points[0]), tuple(points), ids, outputs)
 
 
-def _scenario(top: _Table, path: Path, fmu_dir) -> System:
+def _scenario(top: TomlTable, path: Path, fmu_dir) -> System:
     name = top.get("scenario", str, required=True)
     beside = path.parent / name
     try:
@@ -78,16 +78,16 @@ def _scenario(top: _Table, path: Path, fmu_dir) -> System:
     except ValueError as exc:
         raise top.error("scenario", str(exc)) from None
     system = load_scenario(scenario, scenarios.fmu_folder(scenario, fmu_dir))
-    table = _Table(top.source, "experiment", top.get("experiment", dict, {}))
+    table = TomlTable(top.source, "experiment", top.get("experiment", dict, {}))
     table.unknown(Experiment.__dataclass_fields__)
     changes = {k: table.get(k, type(getattr(system.experiment, k))) for k in table.data}
     try:
         return system.with_changes(**changes)
     except ScenarioError as exc:
-        raise table.error(next(iter(changes)), f"the scenario refuses it: {exc}") from None
+        raise table.error(", ".join(changes), f"the scenario refuses it: {exc}") from None
 
 
-def _check_value(system: System, table: _Table, name: str, value) -> None:
+def _check_value(system: System, table: TomlTable, name: str, value) -> None:
     """The scenario check on ``name`` = ``value`` alone; its message quoted under ``name``."""
     instance, dot, parameter = name.partition(".")
     if not (instance and dot and parameter):
@@ -98,9 +98,9 @@ def _check_value(system: System, table: _Table, name: str, value) -> None:
         raise table.error(name, f"the scenario refuses it: {exc}") from None
 
 
-def _factorial(table: _Table, system: System) -> list[dict]:
+def _factorial(table: TomlTable, system: System) -> list[dict]:
     table.unknown(("kind", "values"))
-    values = _Table(table.source, "design.values", table.get("values", dict, required=True))
+    values = TomlTable(table.source, "design.values", table.get("values", dict, required=True))
     if not values.data:
         raise table.error("values", "names no parameter")
     for name in values.data:
@@ -112,13 +112,13 @@ def _factorial(table: _Table, system: System) -> list[dict]:
     return design.factorial(values.data)
 
 
-def _explicit(table: _Table, system: System) -> list[dict]:
+def _explicit(table: TomlTable, system: System) -> list[dict]:
     table.unknown(("kind", "points"))
     points = table.get("points", list, required=True)
     if not points:
         raise table.error("points", "lists no point")
     for i, point in enumerate(points):
-        row = _Table(table.source, f"design.points #{i + 1}", point)
+        row = TomlTable(table.source, f"design.points #{i + 1}", point)
         if set(row.data) != set(points[0]):
             raise table.error("points", f"point #{i + 1} names {sorted(row.data)}, point #1 "
                               f"{sorted(points[0])}: every point sets the same parameters")
@@ -127,12 +127,12 @@ def _explicit(table: _Table, system: System) -> list[dict]:
     return [dict(p) for p in points]
 
 
-def _latin_hypercube(table: _Table, system: System) -> list[dict]:
+def _latin_hypercube(table: TomlTable, system: System) -> list[dict]:
     table.unknown(("kind", "samples", "seed", "ranges"))
     samples = table.get("samples", int, required=True)
     if samples < 1:
         raise table.error("samples", f"must be >= 1, got {samples}")
-    ranges = _Table(table.source, "design.ranges", table.get("ranges", dict, required=True))
+    ranges = TomlTable(table.source, "design.ranges", table.get("ranges", dict, required=True))
     if not ranges.data:
         raise table.error("ranges", "names no parameter")
     for name in ranges.data:
@@ -146,13 +146,13 @@ def _latin_hypercube(table: _Table, system: System) -> list[dict]:
     return design.latin_hypercube(ranges.data, samples, table.get("seed", int, 0))
 
 
-def _outputs(top: _Table, system: System) -> tuple[Output, ...]:
+def _outputs(top: TomlTable, system: System) -> tuple[Output, ...]:
     outputs, span = [], system.experiment.stop - system.experiment.start
     entries = top.get("outputs", list, required=True)
     if not entries:
         raise top.error("outputs", "lists no output")
     for i, entry in enumerate(entries):
-        t = _Table(top.source, f"outputs #{i + 1}", entry)
+        t = TomlTable(top.source, f"outputs #{i + 1}", entry)
         t.unknown(("variable", "reduce", "settle"))
         instance, variable = t.ref("variable")
         kind = t.get("reduce", str, required=True)
