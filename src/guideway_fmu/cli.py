@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | host-env | scenarios | run | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball | wear``."""
+"""Command line: ``guideway-fmu build | host-env | scenarios | run | sweep | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball | wear``."""
 from __future__ import annotations
 
 import argparse
@@ -28,12 +28,9 @@ def _scenario_args(p) -> None:
 
 def _load(args):
     from . import scenarios
-    from .components import build
     from .cosim import system
-    path, fmu_dir = scenarios.find(args.scenario), args.fmus
-    if fmu_dir is None and scenarios.is_shipped(path):
-        fmu_dir = build.ensure(Path("fmus"))
-    s = system.load(path, fmu_dir)
+    path = scenarios.find(args.scenario)
+    s = system.load(path, scenarios.fmu_folder(path, args.fmus))
     changes = {k: getattr(args, k, None) for k in ("stop", "step", "algorithm", "step_timeout")
                if getattr(args, k, None) is not None}
     return s.with_changes(**changes) if changes else s
@@ -205,6 +202,21 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--step-timeout", type=float, default=None, metavar="SECONDS",
                    help="end the run (exit status 124) when one FMU step takes longer than this "
                         "wall time [s]; overrides the scenario's experiment.step_timeout")
+    p = sub.add_parser("sweep", help="parameter sweep of a scenario on Dask workers: results "
+                       "table and plots (docs/sweep.md)")
+    p.add_argument("sweep", type=Path, help="sweep file (docs/sweep.md)")
+    p.add_argument("--out", type=Path, required=True, help="output folder")
+    p.add_argument("--fmus", type=Path, default=None,
+                   help="take every FMU by file name from this folder (shipped scenarios: "
+                        "default ./fmus, built where missing)")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, default=2,
+                       help="worker processes of the local Dask cluster (default 2)")
+    where.add_argument("--scheduler", default=None,
+                       help="address of a running Dask scheduler to use instead")
+    p.add_argument("--resume", action="store_true",
+                   help="continue the sweep in --out: skip the points already in results.csv")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p = sub.add_parser("verify", help="co-simulation against the monolithic SciPy reference")
     _scenario_args(p)
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")
@@ -252,6 +264,13 @@ def main(argv: list[str] | None = None) -> int:
             from .cosim.run import run
             result = run(_load(args), args.out, progress=not args.no_progress)
             print(json.dumps({k: v for k, v in result.summary().items() if k != "parameters"}, indent=2))
+        elif args.command == "sweep":
+            from .sweep import run, sweep_file
+            spec = sweep_file.load(args.sweep, args.fmus)
+            with run.dask_client(args.workers, args.scheduler) as client:
+                outcome = run.run_sweep(spec, args.out, client, args.resume,
+                                        progress=not args.no_progress)
+            print(json.dumps(outcome.__dict__, indent=2))
         elif args.command == "verify":
             from .reference.verify import format_table, verify
             report = verify(_load(args))

@@ -161,7 +161,9 @@ def _by_type(inst: FmuInstance, names):
     return [g for t, g in groups.items() if t != "String"]
 
 
-def _recorded(system: System) -> list[str]:
+def recorded(system: System) -> list[str]:
+    """The "<instance>.<variable>" a run of ``system`` records: its [record] list, by default
+    every numeric output."""
     if system.record:
         return list(system.record)
     return [f"{i}.{v}" for i, vs in system.variables.items()
@@ -179,7 +181,7 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     process (watchdog.py) after ``before_exit`` got the partial result."""
     exp = system.experiment
     algorithm_class = ALGORITHMS[exp.algorithm]
-    record = _recorded(system)
+    record = recorded(system)
     links = algorithm_class.links(system)
     exchanged = ({(c.source, c.output) for c in system.connections}
                  | algorithm_class.exchanged(system))

@@ -29,6 +29,18 @@ def _uniform_step(time: np.ndarray) -> float | None:
     return float(step) if uniform else None
 
 
+def uniform_grid(time) -> np.ndarray:
+    """``time`` [s] itself if uniformly sampled, else a uniform grid over its span at its median
+    step (to resample a recording onto with ``numpy.interp``); ValueError unless increasing."""
+    time = np.asarray(time, float)
+    if _uniform_step(time) is not None:
+        return time
+    if np.any(np.diff(time) <= 0):
+        raise ValueError("time must be strictly increasing")
+    step = np.median(np.diff(time))
+    return time[0] + step * np.arange(int((time[-1] - time[0]) / step) + 1)
+
+
 def spectrum(time, values, skip: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """One-sided amplitude spectrum of a uniformly sampled signal.
 
@@ -133,12 +145,7 @@ def plot_spectra(rec: Recording, names, path, skip: float = 0.0, f_max: float | 
     A non-uniform recording (adaptive step) is first resampled with ``numpy.interp`` on a uniform
     grid at its median time step.
     """
-    time = rec.time
-    if _uniform_step(time) is None:
-        if np.any(np.diff(time) <= 0):
-            raise ValueError("time must be strictly increasing")
-        step = np.median(np.diff(time))
-        time = time[0] + step * np.arange(int((time[-1] - time[0]) / step) + 1)
+    time = uniform_grid(rec.time)
 
     def draw(ax, name):
         freq, amplitude = spectrum(time, np.interp(time, rec.time, rec.columns[name]), skip)

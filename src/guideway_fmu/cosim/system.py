@@ -302,8 +302,9 @@ def _tangent_table(t: Tangent) -> dict:
 
 
 # -- reading -------------------------------------------------------------------------------
-class _Table:
-    """A TOML table that knows where it came from, for error messages."""
+class TomlTable:
+    """A TOML table that knows where it came from, for error messages naming the file, the
+    table and the key (scenarios here, sweep files in sweep/sweep_file.py)."""
 
     def __init__(self, source: str, name: str, data):
         if not isinstance(data, dict):
@@ -354,35 +355,35 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> System:
         raise ScenarioError(f"{src}: cannot read the scenario: {exc.strerror or exc}") from exc
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{src}: not valid TOML: {exc}") from exc
-    top = _Table(src, "top level", data)
+    top = TomlTable(src, "top level", data)
     top.unknown(("name", "description", "experiment", "components", "connections", "tangents",
                  "record", "plots"))
 
-    exp_t = _Table(src, "experiment", top.get("experiment", dict, required=True))
+    exp_t = TomlTable(src, "experiment", top.get("experiment", dict, required=True))
     exp_t.unknown(Experiment.__dataclass_fields__)
     d = Experiment()
     exp = Experiment(**{k: exp_t.get(k, type(getattr(d, k)), getattr(d, k))
                         for k in Experiment.__dataclass_fields__})
 
     comps = {}
-    for name, table in _Table(src, "components", top.get("components", dict, required=True)).data.items():
-        t = _Table(src, f"components.{name}", table)
+    for name, table in TomlTable(src, "components", top.get("components", dict, required=True)).data.items():
+        t = TomlTable(src, f"components.{name}", table)
         t.unknown(("fmu", "parameters"))
         fmu = Path(t.get("fmu", str, required=True))
         fmu = Path(fmu_dir) / fmu.name if fmu_dir is not None else path.parent / fmu
-        params = _Table(src, f"components.{name}.parameters", t.get("parameters", dict, {})).data
+        params = TomlTable(src, f"components.{name}.parameters", t.get("parameters", dict, {})).data
         comps[name] = Component(name, fmu, dict(params))
 
     connections = []
     for i, table in enumerate(top.get("connections", list, [])):
-        t = _Table(src, f"connections #{i + 1}", table)
+        t = TomlTable(src, f"connections #{i + 1}", table)
         t.unknown(("from", "to"))
         (a, b), (c, e) = t.ref("from"), t.ref("to")
         connections.append(Connection(a, b, c, e))
 
     tangents = []
     for i, table in enumerate(top.get("tangents", list, [])):
-        t = _Table(src, f"tangents #{i + 1}", table)
+        t = TomlTable(src, f"tangents #{i + 1}", table)
         t.unknown(Tangent.__dataclass_fields__.keys() - {"instance"})
         inst, force = t.ref("force")
         named = {}
@@ -402,19 +403,19 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> System:
         to_k, to_c = t.ref("to_stiffness"), t.ref("to_damping", required=False)
         if (named["velocity"] is None) != (named["damping"] is None) or (named["damping"] is None) != (to_c is None):
             raise t.error("velocity", "velocity, damping and to_damping go together")
-        model_t = _Table(src, f"tangents #{i + 1}.model", t.get("model", dict, {}))
+        model_t = TomlTable(src, f"tangents #{i + 1}.model", t.get("model", dict, {}))
         model = tuple((out, model_t.ref(out)) for out in model_t.data)
-        settings = tuple(_Table(src, f"tangents #{i + 1}.settings", t.get("settings", dict, {})).data.items())
+        settings = tuple(TomlTable(src, f"tangents #{i + 1}.settings", t.get("settings", dict, {})).data.items())
         tangents.append(Tangent(inst, force, named["position"], named["stiffness"], to_k,
                                 named["velocity"], named["damping"], to_c, model, settings))
 
-    rec_t = _Table(src, "record", top.get("record", dict, {}))
+    rec_t = TomlTable(src, "record", top.get("record", dict, {}))
     rec_t.unknown(("variables", "interval"))
     record = rec_t.get("variables", list, [])
     for v in record:
         if not isinstance(v, str) or "." not in v:
             raise rec_t.error("variables", f"entries must be '<instance>.<variable>', got {v!r}")
-    plots_t = _Table(src, "plots", top.get("plots", dict, {}))
+    plots_t = TomlTable(src, "plots", top.get("plots", dict, {}))
     plots_t.unknown(PLOT_KINDS + PLOT_OPTIONS)
     plots = {k: plots_t.get(k, list, []) for k in PLOT_KINDS if k in plots_t.data}
     plots.update({k: plots_t.get(k, float) for k in PLOT_OPTIONS if k in plots_t.data})

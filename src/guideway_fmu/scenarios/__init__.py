@@ -51,3 +51,12 @@ def find(scenario: str | Path) -> Path:
 def is_shipped(path: Path) -> bool:
     """Whether ``path`` is one of the shipped scenario files."""
     return Path(path).resolve().parent == FOLDER
+
+
+def fmu_folder(path: Path, fmus: str | Path | None) -> Path | None:
+    """The FMU folder the scenario file ``path`` runs with: ``fmus`` when given, ``./fmus``
+    (built where missing) for a shipped scenario, else None (the FMU paths in the file)."""
+    if fmus is None and is_shipped(path):
+        from ..components import build
+        return build.ensure(Path("fmus"))
+    return None if fmus is None else Path(fmus)

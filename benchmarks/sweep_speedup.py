@@ -1,0 +1,72 @@
+"""Speed-up of a sweep on a local Dask cluster of two worker processes over the same points run
+one after the other in this process.
+
+16 points (4 load amplitudes x 4 excitation frequencies) of Soleimanian et al.'s lubricated rig
+(the shipped 9000 N / 4500 Hz scenario with the carriage's external force changed), each a
+co-simulation of --stop seconds reduced to the upper roller load's peak and envelope. Prints
+both wall times, the speed-up with and without the cluster's start, and whether the two runs
+gave the same numbers. Needs two free cores to show what two workers can do.
+
+    python benchmarks/sweep_speedup.py [--stop 0.02] [--workers 2] [--fmus fmus]
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import tempfile
+import time
+from pathlib import Path
+
+from guideway_fmu.components import build
+from guideway_fmu.sweep import run, sweep_file
+from guideway_fmu.sweep.point import run_point
+
+SWEEP = """scenario = "soleimanian2020_9000N_4500Hz"
+[experiment]
+stop = {stop}
+[design]
+kind = "factorial"
+[design.values]
+"Carriage.load_amplitude" = [6000.0, 8000.0, 10000.0, 12000.0]
+"Carriage.load_frequency" = [2500.0, 4500.0, 5000.0, 9000.0]
+[[outputs]]
+variable = "Contact.F_upper"
+reduce = "peak"
+[[outputs]]
+variable = "Contact.F_upper"
+reduce = "envelope"
+"""
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--stop", type=float, default=0.02, help="simulated time per point [s]")
+    parser.add_argument("--workers", type=int, default=2, help="worker processes")
+    parser.add_argument("--fmus", type=Path, default=Path("fmus"), help="FMU folder (built where missing)")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "speedup.toml"
+        path.write_text(SWEEP.format(stop=args.stop))
+        sweep = sweep_file.load(path, build.ensure(args.fmus))
+        start = time.perf_counter()
+        serial = {i: run_point(sweep.system, p, sweep.outputs)["outputs"]
+                  for i, p in zip(sweep.ids, sweep.points)}
+        serial_s = time.perf_counter() - start
+        start = time.perf_counter()
+        with run.dask_client(args.workers) as client:
+            ready = time.perf_counter()
+            run.run_sweep(sweep, Path(tmp) / "out", client, progress=False, plot=False)
+            swept = time.perf_counter()
+        with (Path(tmp) / "out" / "results.csv").open(newline="") as f:
+            table = {r["point"]: {c: float(r[c]) for c in serial[r["point"]]} for r in csv.DictReader(f)}
+    print(f"{len(sweep.points)} points of {args.stop:g} s each")
+    print(f"serial, in this process:     {serial_s:7.2f} s")
+    print(f"{args.workers} Dask worker processes:  {swept - start:7.2f} s "
+          f"(cluster start {ready - start:.2f} s, points {swept - ready:.2f} s)")
+    print(f"speed-up: {serial_s / (swept - start):.2f} with the cluster's start, "
+          f"{serial_s / (swept - ready):.2f} without")
+    print(f"same numbers as the serial run: {table == serial}")
+
+
+if __name__ == "__main__":
+    main()
