@@ -17,7 +17,7 @@ PROBE = '''
 from pythonfmu import Fmi2Causality, Fmi2Slave, Real
 
 
-class Probe(Fmi2Slave):
+class MarkedProbe(Fmi2Slave):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         self.y = 1.0
@@ -42,9 +42,11 @@ print("FEED", repr(float(r["x"][-1])), repr(float(r["u"][-1])))
 @pytest.fixture(scope="module")
 def marked_probe(tmp_path_factory):
     folder = tmp_path_factory.mktemp("marked")
-    (folder / "probe.py").write_text(PROBE)
-    built = FmuBuilder.build_FMU(folder / "probe.py", dest=folder / "Built.fmu")
-    marked = folder / "Probe.fmu"
+    # a plain pythonfmu FMU's slave module is process-wide by its file name: not "probe", which
+    # test_master_refuses.py's probe uses in the same test process
+    (folder / "marked_probe.py").write_text(PROBE)
+    built = FmuBuilder.build_FMU(folder / "marked_probe.py", dest=folder / "Built.fmu")
+    marked = folder / "MarkedProbe.fmu"
     with zipfile.ZipFile(built) as source, zipfile.ZipFile(marked, "w") as target:
         for entry in source.infolist():
             data = source.read(entry)
