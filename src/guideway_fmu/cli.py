@@ -254,7 +254,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("run_dir", type=Path, help="measured run: rig.toml + data.csv (docs/measured-run.md)")
     p.add_argument("--out", type=Path, required=True, help="output folder: diagnosis.json, fit.csv, report.html, plots")
     p.add_argument("--fmus", type=Path, default=None, help="where to find or build the FMUs (default OUT/fmus)")
-    p = sub.add_parser("demo", help="the main job: FMUs, stiffness curves, paper scenarios, verification")
+    p = sub.add_parser("demo", help="the main job: FMUs, stiffness curves, paper scenarios, "
+                       "verification, diagnosis, a sweep; OUT/index.html shows it all")
     p.add_argument("--out", type=Path, default=Path("out/demo"))
     p.add_argument("--fmus", type=Path, default=Path("fmus"))
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
