@@ -122,7 +122,7 @@ def _stacked(rec: Recording, names, path, title: str, xlabel: str,
     axes = fig.subplots(len(names), 1, sharex=True, squeeze=False)[:, 0]
     for ax, name in zip(axes, names):
         ax.set_ylabel(draw(ax, name), fontsize=8)
-        ax.set_title(name, fontsize=9, loc="left")
+        ax.set_title(name, fontsize=9, loc="right")  # the left corner holds the offset (1e-8)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(xlabel)
     fig.suptitle(title)
