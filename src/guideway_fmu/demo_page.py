@@ -29,7 +29,6 @@ DIAGNOSIS_TEXT = {  # by file-name prefix (diagnose/report.py)
                     "with the baseline residual's bin means.",
     "candidate_ranking": "Every candidate effect's cross-validated score and held-out gap, "
                          "with the baseline's gap and the noise floor.",
-    "spectra": "Amplitude spectra of the measured and modelled responses.",
 }
 
 
@@ -38,9 +37,9 @@ def command(*args) -> str:
     return shlex.join(["guideway-fmu", *map(str, args)])
 
 
-def _section(title: str, text: str, cmd: str) -> list[str]:
+def _section(title: str, text: str, cmd: str | None = None) -> list[str]:
     return [f"<h2>{html.escape(title)}</h2>", f"<p>{html.escape(text)}</p>",
-            f"<pre>{html.escape(cmd)}</pre>"]
+            *([f"<pre>{html.escape(cmd)}</pre>"] if cmd else [])]
 
 
 def _image(out: Path, path: Path, text: str) -> list[str]:
@@ -57,7 +56,7 @@ def write_index(out: Path, fmus: Path, stop: float, summary: dict, scenarios: tu
                 verified: str) -> Path:
     """Write ``out``/index.html from the demo's ``summary`` and the files it wrote into ``out``
     (run with FMUs from ``fmus``, runs of ``stop`` seconds); returns its path."""
-    body = [f"<h1>guideway-fmu demo</h1>",
+    body = ["<h1>guideway-fmu demo</h1>",
             "<p>Everything below was made by one command; the FMUs it built are in "
             f"{html.escape(str(fmus))}, the numbers in summary.json.</p>",
             f"<pre>{html.escape(command('demo', '--out', out, '--fmus', fmus, '--stop', stop))}</pre>"]
@@ -78,8 +77,7 @@ def write_index(out: Path, fmus: Path, stop: float, summary: dict, scenarios: tu
         "Co-simulation of the rig", f"Three shipped scenarios through the co-simulation master, "
         f"{stop:g} s each: the unloaded rig with friction, 9000 N at 4500 Hz with lubricated "
         "contacts, and the same with dry contacts. Each folder holds results.csv (with "
-        "results.units.json) and summary.json; one of them again:",
-        command("run", scenarios[0], "--fmus", fmus, "--stop", stop, "--out", out / scenarios[0]))
+        "results.units.json) and summary.json; each run's command is given with its plots below.")
     rows = [(name, r["steps"], f"{r['wall_time_s']:.2f}", _g(r["dominant_frequency_above_1kHz_Hz"]),
              " to ".join(map(_g, r["F_upper_range_N"])), " to ".join(_g(h * 1e6) for h in r["h_upper_range_m"]))
             for name, r in summary["runs"].items()]
