@@ -1,7 +1,11 @@
+import html
 import json
+import re
+import shutil
 import subprocess
 import sys
 import zipfile
+from html.parser import HTMLParser
 from pathlib import Path
 
 import numpy as np
@@ -84,12 +88,21 @@ def test_cli_run_bad_scenario_is_a_clear_error(tmp_path, capsys):
     assert "bad.toml" in err and "components" in err and "Traceback" not in err
 
 
-@pytest.mark.slow
-def test_demo_main_job_end_to_end_from_another_directory(tmp_path):
+@pytest.fixture(scope="module")
+def demo_run(tmp_path_factory):
+    """The demo run once in a subprocess from another directory (runs of 2 ms, FMUs built into
+    ./fmus there): (the folder it ran in, the finished process)."""
+    cwd = tmp_path_factory.mktemp("demo")
     done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "demo", "--out", "demo",
-                           "--stop", "2e-3"], cwd=tmp_path, capture_output=True, text=True,
+                           "--stop", "2e-3"], cwd=cwd, capture_output=True, text=True,
                           timeout=900)
     assert done.returncode == 0, done.stderr[-3000:]
+    return cwd, done
+
+
+@pytest.mark.slow
+def test_demo_main_job_end_to_end_from_another_directory(demo_run):
+    tmp_path, done = demo_run
     summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
     assert (tmp_path / "fmus" / "ContactEHL.fmu").is_file()
     assert set(summary["runs"]) == set(demo.DEMO_SCENARIOS)
@@ -99,6 +112,81 @@ def test_demo_main_job_end_to_end_from_another_directory(tmp_path):
     assert diagnosis["missing_effect"] == diagnosis["hidden_effect"] == "presliding_hysteresis"
     assert diagnosis["gap_after"] < 0.5 * diagnosis["gap_before"]
     assert (tmp_path / "demo" / "diagnose_example" / "report.html").exists()
+    sweep = summary["sweep"]
+    assert sweep["ok"] == sweep["points"] == 21 and len(sweep["plots"]) == 3
+    # a short summary, not the JSON, ending with where the page is
+    assert not done.stdout.lstrip().startswith("{")
+    assert done.stdout.strip().splitlines()[-1] == f"open {(tmp_path / 'demo' / 'index.html').as_uri()}"
+
+
+class _Page(HTMLParser):
+    """The img sources, link targets and text of an HTML page."""
+
+    def __init__(self):
+        super().__init__()
+        self.images, self.links, self.text = [], [], []
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "img":
+            self.images.append(attrs["src"])
+        elif tag == "a":
+            self.links.append(attrs["href"])
+
+    def handle_data(self, data):
+        self.text.append(data)
+
+
+@pytest.mark.slow
+def test_demo_page_shows_every_plot_the_demo_wrote_with_its_command(demo_run):
+    out = demo_run[0] / "demo"
+    page = _Page()
+    page.feed((out / "index.html").read_text(encoding="utf-8"))
+    written = sorted(p.relative_to(out).as_posix() for p in out.rglob("*.png"))
+    assert len(written) >= 19  # stiffness, 3 runs x 4, 3 sweep outputs, 3 diagnosis plots
+    assert sorted(page.images) == written  # each once, relative to the page
+    assert all((out / link).is_file() for link in page.links)
+    text = "".join(page.text)
+    for command in ("guideway-fmu demo --out demo --fmus fmus --stop 0.002",
+                    "guideway-fmu verify soleimanian2020_9000N_4500Hz --fmus fmus --stop 0.002",
+                    "guideway-fmu sweep demo/envelope_vs_frequency.toml",
+                    "guideway-fmu diagnose demo/diagnose_example/run"):
+        assert command in text
+    assert "presliding_hysteresis" in text
+
+
+def _browser() -> str | None:
+    return next(filter(None, map(shutil.which, ("chromium", "chromium-browser", "google-chrome"))), None)
+
+
+_IMAGE_CHECK = """<script>window.addEventListener("load", () => {
+  const broken = [...document.images].filter(i => !(i.complete && i.naturalWidth > 0));
+  const pre = document.createElement("pre");
+  pre.id = "image-check";
+  pre.textContent = JSON.stringify({images: document.images.length,
+                                    broken: broken.map(i => i.getAttribute("src"))});
+  document.body.appendChild(pre);
+});</script>"""
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(_browser() is None, reason="no headless browser (chromium) installed; "
+                    "test_demo_page_shows_every_plot... checks the image paths with html.parser")
+def test_demo_page_renders_in_a_headless_browser_without_broken_images(demo_run, tmp_path):
+    out = demo_run[0] / "demo"
+    browser = [_browser(), "--headless", "--no-sandbox", "--disable-gpu",
+               "--virtual-time-budget=10000"]
+    shot = tmp_path / "index.png"
+    subprocess.run([*browser, f"--screenshot={shot}", "--window-size=1200,3000",
+                    (out / "index.html").as_uri()], check=True, capture_output=True, timeout=120)
+    assert shot.stat().st_size > 10_000  # a page, not a blank window
+    checked = out / "index.image-check.html"  # the page with a script that counts broken images
+    checked.write_text((out / "index.html").read_text(encoding="utf-8")
+                       .replace("</body>", _IMAGE_CHECK + "</body>"), encoding="utf-8")
+    dom = subprocess.run([*browser, "--dump-dom", checked.as_uri()], check=True,
+                         capture_output=True, text=True, timeout=120).stdout
+    report = json.loads(html.unescape(re.search(r'<pre id="image-check">(.*?)</pre>', dom).group(1)))
+    assert report["images"] >= 19 and report["broken"] == []
 
 
 def test_cli_demo_refuses_bad_stop_before_any_work(tmp_path, capsys):

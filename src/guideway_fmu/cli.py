@@ -184,6 +184,29 @@ def _host_env(fmu) -> int:
     return 1
 
 
+def _demo(args) -> str:
+    """The demo's short summary and where its page is."""
+    from .demo import run_demo
+    s = run_demo(args.out, args.fmus, args.stop)
+    lines = [f"stiffness at y = 0: {s['stiffness_at_y0_lubricated_N_per_m']:.4g} N/m lubricated, "
+             f"{s['stiffness_at_y0_dry_N_per_m']:.4g} N/m dry"]
+    for name, r in s["runs"].items():
+        lines.append(f"{name}: {r['steps']} steps in {r['wall_time_s']:.2f} s, dominant "
+                     f"frequency {r['dominant_frequency_above_1kHz_Hz']:.5g} Hz, upper roller load "
+                     f"{r['F_upper_range_N'][0]:.4g} to {r['F_upper_range_N'][1]:.4g} N")
+    for name, v in s["verify"].items():
+        lines.append(f"verify {name}: RMS error of Contact.F_upper "
+                     f"{v['rms_error_Contact.F_upper']:.2e} of its range")
+    d = s["diagnose"]
+    lines.append(f"diagnose: hidden {d['hidden_effect']}, named {d['missing_effect']}, held-out "
+                 f"gap {d['gap_before']:.4g} -> {d['gap_after']:.4g}")
+    w = s["sweep"]
+    lines.append(f"sweep: {w['ok']} of {w['points']} points in {w['wall_time_s']:.1f} s")
+    lines += [f"numbers: {args.out / 'summary.json'}",
+              f"open {(args.out / 'index.html').resolve().as_uri()}"]
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="guideway-fmu", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -231,7 +254,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("run_dir", type=Path, help="measured run: rig.toml + data.csv (docs/measured-run.md)")
     p.add_argument("--out", type=Path, required=True, help="output folder: diagnosis.json, fit.csv, report.html, plots")
     p.add_argument("--fmus", type=Path, default=None, help="where to find or build the FMUs (default OUT/fmus)")
-    p = sub.add_parser("demo", help="the main job: FMUs, stiffness curves, paper scenarios, verification")
+    p = sub.add_parser("demo", help="the main job: FMUs, stiffness curves, paper scenarios, "
+                       "verification, diagnosis, a sweep; OUT/index.html shows it all")
     p.add_argument("--out", type=Path, default=Path("out/demo"))
     p.add_argument("--fmus", type=Path, default=Path("fmus"))
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
@@ -285,8 +309,7 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "demo":
             if not args.stop > 0:
                 raise ValueError(f"need --stop > 0, got {args.stop}")
-            from .demo import run_demo
-            print(json.dumps(run_demo(args.out, args.fmus, args.stop), indent=2))
+            print(_demo(args))
         elif args.command == "scenarios":
             from . import scenarios
             print("\n".join(scenarios.names()))

@@ -104,3 +104,14 @@ def test_unknown_name_raises_key_error_listing_the_columns(tmp_path):
     with pytest.raises(KeyError, match="contact.x"):
         plot_all(rec, {"time": ["contact.F"], "film": ["contact.x"]}, tmp_path)
     assert not (tmp_path / "time.png").exists()  # checked before anything is written
+
+
+def test_axis_labels_name_the_quantity_from_the_fmu_and_its_unit(fmu_dir):
+    from guideway_fmu import scenarios
+    from guideway_fmu.cosim import master, system
+    from guideway_fmu.cosim.plots import axis_label
+    scenario = system.load(scenarios.find("soleimanian2020_9000N_4500Hz"), fmu_dir)
+    rec = master.simulate(scenario.with_changes(stop=1e-4)).recording
+    assert axis_label(rec, "Contact.F_upper").replace("\n", " ") == "load of one roller in an upper groove [N]"
+    assert axis_label(rec, "Contact.h_upper", "µm").endswith("[µm]")
+    assert axis_label(_recording(np.linspace(0, 1, 9)), "contact.F") == "contact.F [N]"  # no description

@@ -186,7 +186,8 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     exchanged = ({(c.source, c.output) for c in system.connections}
                  | algorithm_class.exchanged(system))
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
-                        system.record_interval, results)
+                        system.record_interval, results,
+                        {r: system.variable_description(*r.split(".", 1)) for r in record})
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
     instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})

@@ -7,6 +7,7 @@ directly, without pyplot: the caller's backend is left alone and no figure stays
 """
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 from typing import Callable
 
@@ -103,6 +104,14 @@ def _unit(rec: Recording, name: str) -> str:
     return rec.units.get(name) or "-"
 
 
+def axis_label(rec: Recording, name: str, unit: str | None = None, what: str = "{}") -> str:
+    """The axis label of the column ``name``: the quantity, its FMU's description of the
+    variable (else ``name``) put into ``what``, and ``unit`` (default the column's), e.g. "load
+    of one roller in an upper groove [N]"; wrapped to fit beside a stacked axis."""
+    quantity = what.format(rec.descriptions.get(name) or name)
+    return textwrap.fill(f"{quantity} [{unit or _unit(rec, name)}]", 34)
+
+
 def _stacked(rec: Recording, names, path, title: str, xlabel: str,
              draw: Callable[[Axes, str], str]) -> Path:
     """Write one figure with an axis per name, stacked over a shared x axis, to ``path``.
@@ -112,8 +121,8 @@ def _stacked(rec: Recording, names, path, title: str, xlabel: str,
     FigureCanvasAgg(fig)
     axes = fig.subplots(len(names), 1, sharex=True, squeeze=False)[:, 0]
     for ax, name in zip(axes, names):
-        ax.set_ylabel(draw(ax, name))
-        ax.set_title(name, fontsize=9, loc="left")
+        ax.set_ylabel(draw(ax, name), fontsize=8)
+        ax.set_title(name, fontsize=9, loc="right")  # the left corner holds the offset (1e-8)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(xlabel)
     fig.suptitle(title)
@@ -126,7 +135,7 @@ def plot_time(rec: Recording, names, path) -> Path:
     """Time histories of the columns ``names`` [their units] over time [s], written to ``path``."""
     def draw(ax, name):
         ax.plot(rec.time, rec.columns[name], lw=0.8)
-        return f"value [{_unit(rec, name)}]"
+        return axis_label(rec, name)
     return _stacked(rec, names, path, "Time histories", "time [s]", draw)
 
 
@@ -160,7 +169,7 @@ def plot_spectra(rec: Recording, names, path, skip: float = 0.0, f_max: float | 
                 bbox=dict(facecolor="white", edgecolor="0.8", alpha=0.8))
         if amplitude.max() > 0:
             ax.set_ylim(amplitude.max() * 1e-6, amplitude.max() * 30)
-        return f"amplitude [{_unit(rec, name)}]"
+        return axis_label(rec, name, what="amplitude of {}")
     return _stacked(rec, names, path, f"Amplitude spectra (Hann window, first {skip:g} s skipped)",
                     "frequency [kHz]", draw)
 
@@ -173,7 +182,7 @@ def plot_film(rec: Recording, names, path) -> Path:
 
     def draw(ax, name):
         ax.plot(rec.time, rec.columns[name] * 1e6, lw=0.8)
-        return "film [µm]"
+        return axis_label(rec, name, "µm")
     return _stacked(rec, names, path, "Film thickness", "time [s]", draw)
 
 
@@ -186,7 +195,7 @@ def plot_envelope(rec: Recording, names, path, window: float) -> Path:
         ax.plot(rec.time, upper, lw=1.0, color="C3", label="upper")
         ax.plot(rec.time, lower, lw=1.0, color="C0", label="lower")
         ax.legend(fontsize=7, loc="upper right")
-        return f"value [{_unit(rec, name)}]"
+        return axis_label(rec, name)
     return _stacked(rec, names, path, f"Envelope (running max/min over {window:g} s)", "time [s]", draw)
 
 

@@ -6,7 +6,7 @@ import json
 import threading
 import time
 from array import array
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -23,11 +23,13 @@ FLUSH_SECONDS = 1.0  # s of wall time
 
 @dataclass
 class Recording:
-    """Recorded signals: ``time`` [s] and one column per ``<instance>.<variable>``."""
+    """Recorded signals: ``time`` [s] and one column per ``<instance>.<variable>``, with its
+    unit and the description its FMU gives the variable (may be missing)."""
 
     time: np.ndarray
     columns: dict[str, np.ndarray]
     units: dict[str, str]
+    descriptions: dict[str, str] = field(default_factory=dict)
 
 
 class Recorder(Observer):
@@ -36,13 +38,15 @@ class Recorder(Observer):
 
     With a ``path`` the rows also go to that CSV file (header ``time,<instance>.<variable>,...``)
     as the run goes (FLUSH_ROWS, FLUSH_SECONDS), and ``<name>.units.json`` beside it maps every
-    column to its unit; :meth:`close` writes the rest. Another thread may call :meth:`close`
+    column to its unit; :meth:`close` writes the rest. ``descriptions`` (column -> the FMU's
+    description of the variable) go into the recording, for the plots' axis labels. Another thread may call :meth:`close`
     (the step watchdog) while the run is stuck in an FMU.
     """
 
     def __init__(self, names: list[str], units: dict[str, str], interval: float = 0.0,
-                 path: str | Path | None = None):
+                 path: str | Path | None = None, descriptions: dict[str, str] | None = None):
         self.names, self.units, self.interval = names, units, interval
+        self.descriptions = descriptions or {}
         self._keys = [tuple(n.split(".", 1)) for n in names]
         self._time = array("d")  # flat arrays: nothing for the garbage collector to traverse
         self._rows = array("d")
@@ -102,4 +106,5 @@ class Recorder(Observer):
         rows, k = len(self._time), len(self.names)
         data = np.array(self._rows[:rows * k], dtype=float).reshape(rows, k)
         return Recording(np.array(self._time[:rows]), {n: data[:, i] for i, n in enumerate(self.names)},
-                         {n: self.units[n] for n in self.names})
+                         {n: self.units[n] for n in self.names},
+                         {n: self.descriptions[n] for n in self.names if n in self.descriptions})

@@ -147,6 +147,10 @@ class System:
     def unit(self, instance: str, variable: str) -> str:
         return self.variables[instance][variable].unit or ""
 
+    def variable_description(self, instance: str, variable: str) -> str:
+        """The FMU's description of the variable ("" if it gives none)."""
+        return self.variables[instance][variable].description or ""
+
     def with_changes(self, fmus: dict[str, Path] | None = None,
                      parameters: dict[str, dict] | None = None, **experiment) -> "System":
         """A copy with some FMU files replaced (instance -> path), some parameters set

@@ -29,7 +29,7 @@ def plot_comparison(path, time, measured, baseline, augmented, held, channel, ef
         if effect not in ("none", "unknown"):
             ax.plot(time[sel], augmented[sel], lw=1, label=f"+ {effect} (co-simulation)")
         ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"{channel} [{unit}]")
+        ax.set_ylabel(f"{channel.replace('_', ' ')} [{unit}]")
     axes[0].set_title("whole record")
     axes[1].set_title("zoom on held-out samples")
     axes[0].legend(loc="upper right", fontsize=8)
@@ -49,8 +49,8 @@ def plot_residual(path, signal, name, unit, before, after, mask, effect) -> Path
     counts = np.maximum(np.bincount(index, minlength=40), 1)
     ax.plot(centre, np.bincount(index, before[mask], 40) / counts, "k-", lw=1.5,
             label="baseline residual, bin means")
-    ax.set_xlabel(f"{name} [{unit}]")
-    ax.set_ylabel("residual [N]")
+    ax.set_xlabel(f"{name.replace('_', ' ')} [{unit}]")
+    ax.set_ylabel("residual, measured - model [N]")
     ax.legend(fontsize=8)
     ax.set_title(f"residual against {name} (held-out samples)")
     return _save(fig, path)
@@ -90,7 +90,7 @@ def plot_spectra(path, spectra: dict, channel, unit, marks: dict) -> Path:
                 ax.axvline(f, color="0.6", lw=0.8)
                 ax.text(f, ax.get_ylim()[1], f" {label}", fontsize=7, va="top", rotation=90)
         ax.set_xlabel("frequency [Hz]")
-        ax.set_ylabel(f"{channel} amplitude [{unit}]")
+        ax.set_ylabel(f"amplitude of {channel.replace('_', ' ')} [{unit}]")
     axes[0].set_title("whole band")
     axes[1].set_title("feed frequency and its harmonics")
     axes[0].legend(fontsize=8)

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import html_page
 from . import locate, plots
 from .candidates import CANDIDATES
 from .decide import Naming
@@ -62,13 +63,6 @@ def write_fit(path: Path, time, measured, baseline, augmented) -> Path:
     return path
 
 
-def _table(rows, header) -> str:
-    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>"
-                   for row in rows)
-    return f"<table><tr>{head}</tr>{body}</table>"
-
-
 def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> Path:
     """report.html: the verdict, the numbers, how they were obtained and the plots, inline."""
     d = diagnosis
@@ -80,25 +74,19 @@ def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> 
                    ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
                              for k, v in c["parameters"].items()))
                   for c in d["candidates"]]
-    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>diagnosis</title>",
-             "<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto}"
-             "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;"
-             "padding:3px 8px;text-align:left;vertical-align:top}img{max-width:100%}</style>"
-             "</head><body>",
-             f"<h1>Diagnosis of {html.escape(notes['run'])}</h1>",
-             _table(verdict, ["", ""]),
+    parts = [f"<h1>Diagnosis of {html.escape(notes['run'])}</h1>",
+             html_page.table(verdict, ["", ""]),
              "<h2>Candidates (scored on held-out samples, cross-validated over 3 folds; "
              "parameters and held-out gap of fold 1)</h2>",
-             _table(candidates, ["effect", "score", "held-out gap", "parameters"])]
+             html_page.table(candidates, ["effect", "score", "held-out gap", "parameters"])]
     for title, entries in notes["sections"].items():
         parts.append(f"<h2>{html.escape(title)}</h2>")
-        parts.append(_table(list(entries.items()), ["", ""]))
+        parts.append(html_page.table(list(entries.items()), ["", ""]))
     for image in images:
         data = base64.b64encode(image.read_bytes()).decode("ascii")
         parts.append(f"<h3>{html.escape(image.stem.replace('_', ' '))}</h3>"
-                     f"<img alt='{html.escape(image.stem)}' src='data:image/png;base64,{data}'>")
-    parts.append("</body></html>")
-    path.write_text("\n".join(parts), encoding="utf-8")
+                     + html_page.figure(f"data:image/png;base64,{data}", image.stem))
+    path.write_text(html_page.page("diagnosis", parts), encoding="utf-8")
     return path
 
 

@@ -6,10 +6,13 @@ from __future__ import annotations
 
 import json
 import re
+import textwrap
 from pathlib import Path
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+from .reduce import QUANTITY
 
 MAX_LINES = 8  # more combinations of the other parameters than this: scattered points
 
@@ -19,7 +22,7 @@ def plot_outputs(results_json: Path, out: Path) -> list[Path]:
     (written by table.ResultsTable.write_json); returns the paths."""
     data = json.loads(Path(results_json).read_text())
     points = [p for p in data["points"] if p["status"] == "ok"]
-    names = data["parameters"]
+    names, about = data["parameters"], data["descriptions"]
     paths = []
     for output in data["outputs"]:
         column = output["column"]
@@ -40,7 +43,9 @@ def plot_outputs(results_json: Path, out: Path) -> list[Path]:
                         color=None if lines else "C0", label=label if lines and label else None)
             if lines and others:
                 ax.legend(fontsize=7)
-            ax.set(xlabel=name, ylabel=f"{column} [{output['unit'] or '-'}]")
+            quantity = f"{QUANTITY[output['reduce']]} {about[output['variable']] or output['variable']}"
+            ax.set(xlabel=f"{about[name] or name} [{data['parameter_units'][name] or '-'}]",
+                   ylabel=textwrap.fill(f"{quantity} [{output['unit'] or '-'}]", 40))
             ax.grid(alpha=0.3)
         settle = f", first {output['settle_s']:g} s left out" if output["settle_s"] else ""
         fig.suptitle(f"{data['scenario']}: {column}{settle}", fontsize=10)

@@ -43,6 +43,8 @@ def dominant_frequency(time, values) -> float:
 
 
 REDUCTIONS = {f.__name__: f for f in (peak, rms, envelope, dominant_frequency)}
+QUANTITY = {"peak": "peak |x| of", "rms": "RMS of", "envelope": "max - min of",
+            "dominant_frequency": "dominant frequency of"}  # axis labels: "<QUANTITY> <variable>"
 
 
 @dataclass(frozen=True)

@@ -103,6 +103,10 @@ class ResultsTable:
                                if not isinstance(v, str)},
                 "algorithm": self.sweep.system.experiment.algorithm, "design": self.sweep.kind,
                 "parameters": list(self.sweep.parameters),
+                "parameter_units": {p: self.sweep.system.unit(*p.split(".", 1))
+                                    for p in self.sweep.parameters},
+                "descriptions": {n: self.sweep.system.variable_description(*n.split(".", 1))
+                                 for n in (*self.sweep.parameters, *units)},
                 "outputs": [{"column": o.column, "variable": o.variable, "reduce": o.kind,
                              "settle_s": o.settle, "unit": o.unit(units[o.variable])}
                             for o in self.sweep.outputs],
