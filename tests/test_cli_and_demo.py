@@ -66,6 +66,9 @@ def test_cli_verify_json_meets_the_accuracy_target_on_a_short_loaded_run(fmu_dir
     assert set(report) >= {"rms_error", "peak_error", "wall_time_cosim", "wall_time_reference"}
     assert report["rms_error"]["Contact.F_upper"] < 0.01
     assert "Carriage.y" in report["peak_error"]
+    # the reference moves by under 1e-6 of the range when disturbed here (measured): pointwise
+    assert report["signal"] == "Contact.F_upper" and report["criterion"] == "pointwise"
+    assert max(report["predictability"]["spread"].values()) < 1e-3 and report["passed"] is True
 
 
 def test_cli_export_ssp_writes_a_package_baked_unless_told_not_to(fmu_dir, tmp_path, capsys):

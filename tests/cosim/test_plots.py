@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from guideway_fmu.cosim.recording import Recording
-from guideway_fmu.cosim.plots import _peaks, envelope, plot_all, plot_film, plot_spectra, plot_time, spectrum
+from guideway_fmu.cosim.plots import peak_indices, envelope, plot_all, plot_film, plot_spectra, plot_time, spectrum
 
 FS = 20_000.0  # sampling rate [Hz]
 
@@ -44,7 +44,7 @@ def test_peaks_are_the_highest_local_maxima():
     t = np.arange(4000) / FS
     x = 0.2 * np.sin(2 * np.pi * 500 * t) + np.sin(2 * np.pi * 2000 * t) + 0.5 * np.sin(2 * np.pi * 7000 * t)
     freq, amplitude = spectrum(t, x)
-    assert freq[_peaks(amplitude, 3)].tolist() == [2000.0, 7000.0, 500.0]
+    assert freq[peak_indices(amplitude, 3)].tolist() == [2000.0, 7000.0, 500.0]
 
 
 def test_spectrum_rejects_non_uniform_or_short_signals():

@@ -47,6 +47,17 @@ def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_d
     assert np.max(np.abs(y)) == pytest.approx(1e-9, rel=1e-4, abs=0.0)  # undamped
 
 
+def test_start_offset_moves_every_state_by_that_fraction_of_its_nominal_scale(fmu_dir, tmp_path):
+    # independent check: the carriage's nominal scales (physics/carriage.py), 1.04e-6 m and
+    # 0.043 m/s, times the offset, added to its start (y_start, at rest)
+    rig = scenario(tmp_path / "dry.toml", fmu_dir, {
+        "Carriage": ("VerticalDynamics", {"gravity": 0.0, "y_start": 1e-9}),
+        "Contact": ("ContactDryHertz", {})}, RIG_WIRING, stop=1e-5)
+    ref = monolithic.simulate(rig, start_offset=1e-3)
+    assert ref.columns["Carriage.y"][0] == pytest.approx(1e-9 + 1.04e-9, rel=1e-12)
+    assert ref.columns["Carriage.y_dot"][0] == pytest.approx(4.3e-5, rel=1e-12)
+
+
 @pytest.mark.parametrize("contact, film_model", [
     ("ContactEHL", "extrapolated"), ("ContactEHL", "pan_hamrock"), ("ContactDryHertz", None)])
 def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, contact, film_model):

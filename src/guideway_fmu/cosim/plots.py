@@ -139,7 +139,7 @@ def plot_time(rec: Recording, names, path) -> Path:
     return _stacked(rec, names, path, "Time histories", "time [s]", draw)
 
 
-def _peaks(amplitude: np.ndarray, count: int) -> np.ndarray:
+def peak_indices(amplitude: np.ndarray, count: int) -> np.ndarray:
     """Indices of the ``count`` highest local maxima of ``amplitude``, highest first."""
     inner = np.flatnonzero((amplitude[1:-1] > amplitude[:-2]) & (amplitude[1:-1] >= amplitude[2:])) + 1
     return inner[np.argsort(amplitude[inner])[::-1][:count]]
@@ -161,7 +161,7 @@ def plot_spectra(rec: Recording, names, path, skip: float = 0.0, f_max: float | 
         if f_max is not None:
             freq, amplitude = freq[freq <= f_max], amplitude[freq <= f_max]
         ax.semilogy(freq / 1e3, amplitude, lw=0.8)
-        top = _peaks(amplitude, n_peaks)
+        top = peak_indices(amplitude, n_peaks)
         ax.plot(freq[top] / 1e3, amplitude[top], "v", color="C3", ms=5)
         # listed in a corner rather than beside each marker: close peaks (sidebands) stay legible
         ax.text(0.99, 0.95, "peaks: " + ", ".join(f"{freq[i]:.4g}" for i in top) + " Hz",

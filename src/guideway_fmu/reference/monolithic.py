@@ -53,14 +53,15 @@ def check(system) -> None:
 
 
 def simulate(system, times=None, rtol: float = 1e-10, method: str | None = None,
-             columns=None) -> Reference:
+             columns=None, start_offset: float = 0.0) -> Reference:
     """Integrate ``system`` (a checked ``cosim.system.System``) from experiment.start.
 
     ``times`` [s], increasing and not before the start, are the output times; by default the
     macro-step grid start, start + step, ..., stop. ``method`` is a ``solve_ivp`` method; by
     default LSODA, or RK45 when a model's derivatives jump (``ContinuousModel.smooth``).
     ``columns`` ("<instance>.<variable>") limits the outputs evaluated to those (and what they
-    need): a fit that reads one channel skips the rest.
+    need): a fit that reads one channel skips the rest. ``start_offset`` moves every state's
+    start by that fraction of its nominal scale (a disturbed start, to probe predictability).
     Raises ValueError naming the component for a component or a wiring that the reference
     cannot model, RuntimeError when the integration fails.
     """
@@ -74,7 +75,7 @@ def simulate(system, times=None, rtol: float = 1e-10, method: str | None = None,
     if method is None:
         smooth = all(b.model.smooth for b in model.blocks.values())
         method = "LSODA" if smooth else "RK45"
-    y0 = model.initial_state(exp.start)
+    y0 = model.initial_state(exp.start) + start_offset * model.atol(1.0)
     t0 = time.perf_counter()
     sol = solve_ivp(model.rhs, (exp.start, times[-1]), y0, method=method, t_eval=times,
                     rtol=rtol, atol=model.atol(rtol))
