@@ -345,6 +345,17 @@ class TomlTable:
             raise self.error(extra[0], f"is not a known key (known: {', '.join(sorted(allowed))})")
 
 
+def read_toml(path: Path, what: str) -> dict:
+    """The TOML file ``path`` (``what`` it is, for the message); a ScenarioError naming the file
+    when it cannot be read or parsed."""
+    try:
+        return tomllib.loads(path.read_text())
+    except OSError as exc:
+        raise ScenarioError(f"{path}: cannot read {what}: {exc.strerror or exc}") from exc
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{path}: not valid TOML: {exc}") from exc
+
+
 def load(path: str | Path, fmu_dir: str | Path | None = None) -> System:
     """Read and check a scenario TOML file.
 
@@ -353,13 +364,7 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> System:
     """
     path = Path(path)
     src = str(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except OSError as exc:
-        raise ScenarioError(f"{src}: cannot read the scenario: {exc.strerror or exc}") from exc
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{src}: not valid TOML: {exc}") from exc
-    top = TomlTable(src, "top level", data)
+    top = TomlTable(src, "top level", read_toml(path, "the scenario"))
     top.unknown(("name", "description", "experiment", "components", "connections", "tangents",
                  "record", "plots"))
 

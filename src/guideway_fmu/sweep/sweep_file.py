@@ -6,13 +6,13 @@ is checked by the scenario check itself (``System.with_changes``), whose message
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 from .. import scenarios
 from ..cosim import master
-from ..cosim.system import Experiment, ScenarioError, System, TomlTable, load as load_scenario
+from ..cosim.system import (Experiment, ScenarioError, System, TomlTable, load as load_scenario,
+                            read_toml)
 from . import design
 from .reduce import REDUCTIONS, Output
 
@@ -47,13 +47,7 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> Sweep:
     scenario's name; FMUs as for ``guideway-fmu run`` (``fmu_dir``, or ./fmus for a shipped one)."""
     path = Path(path)
     src = str(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except OSError as exc:
-        raise ScenarioError(f"{src}: cannot read the sweep file: {exc.strerror or exc}") from exc
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{src}: not valid TOML: {exc}") from exc
-    top = TomlTable(src, "top level", data)
+    top = TomlTable(src, "top level", read_toml(path, "the sweep file"))
     top.unknown(("scenario", "description", "experiment", "design", "outputs"))
     system = _scenario(top, path, fmu_dir)
     table = TomlTable(src, "design", top.get("design", dict, required=True))
