@@ -45,6 +45,7 @@ def fatal_run(faulty, fmu_dir, tmp_path, algorithm, fault, message, at="0.005"):
     assert list(scratch.iterdir()) == []
 
 
+@pytest.mark.slow  # child processes, five runs each
 @pytest.mark.parametrize("algorithm", ["jacobi", "stabilised"])
 def test_fatal_fmu_is_reported_and_the_process_exits_cleanly(faulty, fmu_dir, tmp_path, algorithm):
     for _ in range(5):

@@ -75,6 +75,7 @@ def ended(tmp_path, child, status):
     return err, json.loads((tmp_path / "out" / "summary.json").read_text())
 
 
+@pytest.mark.slow  # child processes
 @pytest.mark.parametrize("signum, status", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_a_signal_stops_the_run_keeping_its_results_and_naming_the_cause(start, tmp_path,
                                                                         signum, status):
@@ -96,6 +97,7 @@ def test_a_signal_stops_the_run_keeping_its_results_and_naming_the_cause(start, 
     assert np.allclose(np.diff(times), 0.01) and summary["time_span_s"] == [0.0, times[-1]]
 
 
+@pytest.mark.slow  # child processes
 @pytest.mark.parametrize("extra, options", [("", ("--step-timeout", "0.5")),
                                             ("step_timeout = 0.5", ())])
 def test_a_step_that_outlasts_the_step_timeout_ends_the_run_naming_instance_time_and_limit(
