@@ -16,13 +16,13 @@ import modulefinder
 import shutil
 import sys
 import tempfile
-import zipfile
 from pathlib import Path
 
 import pythonfmu
 from fmpy import read_model_description
 from pythonfmu.builder import FmuBuilder
 
+from ..fmu_zip import rewrite
 from . import exit_patch, registry
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
@@ -101,15 +101,13 @@ def _finish(fmu: Path, package: str) -> Path:
     pythonfmu FMU of a process) into the FMU's own package as ``_pythonfmu``, and make the Linux
     binary safe at exit (:mod:`.exit_patch`); returns ``fmu``."""
     shared, private = "resources/pythonfmu/", f"resources/{package}/_pythonfmu/"
-    moved = fmu.with_suffix(".moving")
-    with zipfile.ZipFile(fmu) as source, \
-            zipfile.ZipFile(moved, "w", zipfile.ZIP_DEFLATED) as target:
-        for entry in source.infolist():
-            name = entry.filename
-            target.writestr(private + name[len(shared):] if name.startswith(shared) else name,
-                            source.read(entry))
-    moved.replace(fmu)
-    return exit_patch.patch_fmu(fmu)
+
+    def finish(name: str, data: bytes) -> tuple[str, bytes]:
+        if name.startswith(shared):
+            name = private + name[len(shared):]
+        return exit_patch.patch_entry(name, data)
+
+    return rewrite(fmu, fmu, finish)
 
 
 def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:

@@ -15,8 +15,9 @@ static destructors run, which is safe, and is left unchanged.
 from __future__ import annotations
 
 import struct
-import zipfile
 from pathlib import Path
+
+from ..fmu_zip import rewrite
 
 SYMBOL = b"finalizePythonInterpreter"
 ENDBR64 = bytes.fromhex("f30f1efa")
@@ -63,14 +64,11 @@ def patch(elf: bytes) -> bytes:
 
 def patch_fmu(fmu: str | Path) -> Path:
     """Rewrite the FMU archive ``fmu`` with its Linux binaries patched; returns its path."""
-    fmu = Path(fmu)
-    patched = fmu.with_suffix(".patching")
-    with zipfile.ZipFile(fmu) as source, \
-            zipfile.ZipFile(patched, "w", zipfile.ZIP_DEFLATED) as target:
-        for entry in source.infolist():
-            data = source.read(entry)
-            if entry.filename.startswith("binaries/linux64/") and entry.filename.endswith(".so"):
-                data = patch(data)
-            target.writestr(entry.filename, data)
-    patched.replace(fmu)
-    return fmu
+    return rewrite(fmu, fmu, patch_entry)
+
+
+def patch_entry(name: str, data: bytes) -> tuple[str, bytes]:
+    """An FMU archive entry with :func:`patch` applied if it is a Linux binary."""
+    if name.startswith("binaries/linux64/") and name.endswith(".so"):
+        return name, patch(data)
+    return name, data

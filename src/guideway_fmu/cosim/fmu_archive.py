@@ -9,6 +9,8 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
+from ..fmu_zip import rewrite
+
 DESCRIPTION = "modelDescription.xml"
 
 
@@ -55,13 +57,8 @@ def with_start_values(fmu: str | Path, out: str | Path, values: dict) -> Path:
     instantiates: one of the reasons it cannot carry other start values."""
     fmu, out = Path(fmu), Path(out)
     check_entries(fmu)
-    with zipfile.ZipFile(fmu) as src, zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as dst:
-        for info in src.infolist():
-            data = src.read(info)
-            if info.filename == DESCRIPTION:
-                data = _set_starts(fmu, data, values)
-            dst.writestr(info, data)
-    return out
+    return rewrite(fmu, out, lambda name, data: (
+        name, _set_starts(fmu, data, values) if name == DESCRIPTION else data))
 
 
 def _set_starts(fmu: Path, xml: bytes, values: dict) -> bytes:
