@@ -117,3 +117,12 @@ def test_a_discarded_step_names_its_cause_on_stderr_with_logging_off(fmu_dir, c_
     run = host_env.run_in_c_host(c_host, fmu_dir / "ForceTable.fmu", env, work_dir=tmp_path)
     assert run.status == 3  # fmi2DoStep returned fmi2Discard
     assert "ForceTable c_host: table_file is empty" in run.stderr
+
+
+def test_host_env_check_of_a_file_that_is_no_fmu_is_a_clear_error(tmp_path):
+    junk = tmp_path / "junk.fmu"
+    junk.write_text("not a zip archive")
+    done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "host-env", "--check",
+                           str(junk)], capture_output=True, text=True)
+    assert done.returncode == 2 and "Traceback" not in done.stderr
+    assert f"{junk}: not an FMU that can be read" in done.stderr

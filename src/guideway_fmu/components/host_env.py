@@ -82,7 +82,10 @@ def run_in_c_host(executable: Path, fmu: str | Path, environment: dict[str, str]
     ``executable``, in a child whose environment is ``environment`` and PATH only, with the Real
     or String variables of ``start_values`` (by name) set before initialisation."""
     fmu = Path(fmu)
-    md = read_model_description(str(fmu))
+    try:
+        md = read_model_description(str(fmu))
+    except (OSError, ValueError, zipfile.BadZipFile) as exc:  # fmpy's messages, with the file
+        raise HostEnvError(f"{fmu}: not an FMU that can be read: {exc}") from exc
     by_name = {v.name: v for v in md.modelVariables}
     settings = []
     for name, value in (start_values or {}).items():
