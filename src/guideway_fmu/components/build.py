@@ -32,7 +32,7 @@ import traceback
 
 try:
     from {package}.components.runtime import hold_namespace
-    from {package}.components.{module} import {name}
+    from {package}.{module} import {name}
 except BaseException:
     print("FMU {name} cannot import its code; a C host needs the environment that "
           "`guideway-fmu host-env` prints:", file=sys.stderr)
@@ -51,11 +51,15 @@ def shipped_files(cls: type) -> list[Path]:
     return sorted(f for f in files if f.is_relative_to(PACKAGE_DIR))
 
 
-def code_hash(files: list[Path]) -> str:
-    """Short hash of the code an FMU ships (``files`` and the runtime's version)."""
+def code_hash(files: list[Path], data: dict[str, Path] | None = None) -> str:
+    """Short hash of the code an FMU ships (``files`` and the runtime's version) and of the
+    ``data`` files it carries (name in its package -> file)."""
     digest = hashlib.sha256(pythonfmu.__version__.encode())
     for path in files:
         digest.update(str(path.relative_to(PACKAGE_DIR)).encode())
+        digest.update(path.read_bytes())
+    for name, path in sorted((data or {}).items()):
+        digest.update(name.encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()[:10]
 
@@ -66,33 +70,45 @@ def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     classes = [registry.component(n) for n in (registry.names() if names is None else names)]
+    built = pack([(cls, out_dir / f"{cls.__name__}.fmu") for cls in classes])
+    write_readme(out_dir, sorted(out_dir.glob("*.fmu")))
+    return built
+
+
+def pack(slaves: list[tuple[type, Path]], data: dict[str, Path] | None = None,
+         handle_state: bool = True) -> list[Path]:
+    """Build an FMU of each (slave class of this package, destination file): its package copy
+    ``guideway_fmu_<class>_<hash>`` holds the modules the class imports and the ``data`` files
+    (path inside the package -> file), the runtime moved in and the binary patched (module doc);
+    ``handle_state``: whether it declares canGetAndSetFMUstate."""
     built, tags = [], []
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_build_") as tmp:
         tmp = Path(tmp)
         sys.path.insert(0, str(tmp))
         try:
-            for cls in classes:
+            for cls, dest in slaves:
                 name = cls.__name__
                 files = shipped_files(cls)
-                tag = code_hash(files)
+                tag = code_hash(files, data)
                 tags.append(tag)
                 package = tmp / f"guideway_fmu_{name}_{tag}"
-                for path in files:
-                    target = package / path.relative_to(PACKAGE_DIR)
+                copies = {path.relative_to(PACKAGE_DIR): path for path in files}
+                copies.update({Path(entry): path for entry, path in (data or {}).items()})
+                for entry, path in copies.items():
+                    target = package / entry
                     target.parent.mkdir(parents=True, exist_ok=True)
                     shutil.copy2(path, target)
                 script = tmp / f"{name}_{tag}.py"
-                module = cls.__module__.rsplit(".", 1)[1]
+                module = cls.__module__.split(".", 1)[1]
                 script.write_text(SLAVE_SCRIPT.format(name=name, package=package.name,
                                                       module=module))
-                fmu = FmuBuilder.build_FMU(script, dest=out_dir / f"{name}.fmu",
-                                           project_files=[package], canGetAndSetFMUstate=True)
+                fmu = FmuBuilder.build_FMU(script, dest=dest, project_files=[package],
+                                           canGetAndSetFMUstate=handle_state)
                 built.append(_finish(Path(fmu), package.name))
         finally:
             sys.path.remove(str(tmp))
             for module in [m for m in sys.modules if any(tag in m for tag in tags)]:
                 del sys.modules[module]
-    write_readme(out_dir, sorted(out_dir.glob("*.fmu")))
     return built
 
 

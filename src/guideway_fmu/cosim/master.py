@@ -20,7 +20,7 @@ from typing import Callable
 import numpy as np
 from fmpy.fmi1 import FMICallException
 
-from .algorithms import ALGORITHMS, order
+from .algorithms import ALGORITHMS, Algorithm, order
 from .fmu_instance import ERROR, FATAL, FmuInstance
 from .interrupts import StopRequested, StopRequests
 from .observers import Observer, ProgressBar
@@ -170,6 +170,83 @@ def recorded(system: System) -> list[str]:
             for v, var in vs.items() if var.causality == "output" and var.type != "String"]
 
 
+class Execution:
+    """A system's FMUs instantiated (sources first), initialised, connected on a :class:`Bus` and
+    stepped by the experiment's algorithm on demand: the one stepping loop, behind
+    :func:`simulate` and the packed FMU (packed_fmu.py). ``observed``: further (instance,
+    variable) that :meth:`Bus.observe` reads; ``t`` [s] is where the instances are,
+    ``steps``/``rejected`` count into ``result``."""
+
+    def __init__(self, system: System, result: Result, observed: set = frozenset()):
+        self.system, self.result, self.observed = system, result, set(observed)
+        self.algorithm_class = ALGORITHMS[system.experiment.algorithm]
+        self.instances: dict[str, FmuInstance] = {}
+        self.bus: Bus | None = None
+        self.algorithm: Algorithm | None = None
+        self.t, self.h = system.experiment.start, system.experiment.step
+
+    def instantiate(self, stops: StopRequests) -> None:
+        """Instantiate every FMU (SimulationError naming the instance and file if one fails)."""
+        for name in order(self.system):
+            comp = self.system.components[name]
+            try:
+                self.instances[name] = FmuInstance(comp.fmu, name)
+            except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
+                raise SimulationError(f"{self.system.name}: cannot instantiate {name} from "
+                                      f"{comp.fmu}: {exc}", self.result) from exc
+            stops.check(None)
+
+    def initialise(self, stops: StopRequests, values: dict | None = None) -> None:
+        """Initialise every instance with the scenario's parameters, then ``values`` ({instance:
+        {parameter or input: value}}), then the algorithm's settings; outputs on the bus."""
+        system = self.system
+        cls = self.algorithm_class
+        exchanged = {(c.source, c.output) for c in system.connections} | cls.exchanged(system)
+        self.bus = Bus(system, self.instances, exchanged, self.observed, cls.links(system))
+        settings = cls.settings(system)
+        _initialise(system, self.bus, {n: {**(values or {}).get(n, {}), **settings.get(n, {})}
+                                       for n in self.instances}, stops)
+        self.algorithm = cls(self.bus, system)
+
+    def advance(self, until: float, stops: StopRequests, watchers=()) -> None:
+        """Step from ``t`` to ``until`` [s] (the last step shortened to end there), notifying
+        ``watchers`` after every accepted step; inputs set from outside are held. An
+        FMICallException leaves with ``time`` [s]: that of the values concerned (the end of the
+        step for a non-finite output, the step's start else)."""
+        exp, algorithm, bus, result = self.system.experiment, self.algorithm, self.bus, self.result
+        eps = 1e-9 * exp.step
+        t, h = self.t, self.h
+        try:
+            while t < until - eps:
+                stops.check(t)
+                h_try = min(h, until - t)
+                try:
+                    accepted, h_next = algorithm.step(t, h_try)
+                except FMICallException as exc:
+                    exc.time = t + h_try if isinstance(exc, NonFiniteOutput) else t
+                    raise
+                if not accepted:
+                    result.rejected += 1
+                    h = h_next
+                    continue
+                result.steps += 1
+                t = until if until - (t + h_try) <= eps else t + h_try
+                h = h_next if exp.tolerance > 0 else exp.step
+                try:
+                    for w in watchers:
+                        w.stepped(t, bus)
+                except FMICallException as exc:  # a recorded-only output at t
+                    exc.time = t
+                    raise
+        finally:
+            self.t, self.h = t, h
+
+    def close(self) -> None:
+        """Terminate and free every instance and delete its extracted files."""
+        for inst in self.instances.values():
+            inst.close()
+
+
 def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = (),
              results: str | Path | None = None,
              before_exit: Callable[[Result], None] | None = None) -> Result:
@@ -180,17 +257,14 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     (recording.py). With the experiment's ``step_timeout``, a doStep that outlasts it ends the
     process (watchdog.py) after ``before_exit`` got the partial result."""
     exp = system.experiment
-    algorithm_class = ALGORITHMS[exp.algorithm]
     record = recorded(system)
-    links = algorithm_class.links(system)
-    exchanged = ({(c.source, c.output) for c in system.connections}
-                 | algorithm_class.exchanged(system))
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
                         system.record_interval, results,
                         {r: system.variable_description(*r.split(".", 1)) for r in record})
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
-    instances: dict[str, FmuInstance] = {}
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
+    execution = Execution(system, result, {tuple(r.split(".", 1)) for r in record})
+    instances = execution.instances
 
     def expired(name: str, t: float) -> None:  # in the watchdog's thread; the process then ends
         result.error = (f"{system.name}: FMU instance {name!r} did not return from the step at "
@@ -206,45 +280,41 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
 
     with StopRequests() as stops:  # also while the instances are closed
         try:
-            for name in order(system):
-                comp = system.components[name]
-                try:
-                    instances[name] = FmuInstance(comp.fmu, name)
-                except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
-                    raise SimulationError(f"{system.name}: cannot instantiate {name} from "
-                                          f"{comp.fmu}: {exc}", result) from exc
-                stops.check(None)
-            bus = Bus(system, instances, exchanged, {tuple(r.split(".", 1)) for r in record}, links)
-            _initialise(system, bus, algorithm_class.settings(system), stops)
+            execution.instantiate(stops)
+            execution.initialise(stops)
             result.parameters = {n: _parameters(inst) for n, inst in instances.items()}
             try:
                 for w in watchers:
-                    w.started(system, bus)
+                    w.started(system, execution.bus)
             except FMICallException as exc:
                 exc.time = exp.start
                 raise
             with (StepWatchdog(instances, exp.step_timeout, expired)
                   if exp.step_timeout < math.inf else nullcontext()):
-                _run(exp, algorithm_class(bus, system), bus, watchers, result, stops)
+                _run(execution, watchers, stops)
         except FMICallException as exc:
-            if exc.status == FATAL:  # no call into any instance after fmi2Fatal
-                for inst in instances.values():
-                    inst.fatal = True
-            failing = getattr(exc, "instance", None)
-            logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
-                             if failing is None or n == failing)
-            result.error = (f"{system.name}: FMU instance {failing!r} failed {_when(exc)}: "
-                            f"{exc}\n{logs}")
+            result.error = failure(system.name, instances, exc)
             raise SimulationError(result.error, result) from exc
         except StopRequested as exc:
             result.error = f"{system.name}: {exc} {_when(exc)}"
             raise SimulationError(result.error, result, exc.signal) from None
         finally:
-            for inst in instances.values():
-                inst.close()
+            execution.close()
             recorder.close()
             result.recording = recorder.recording()
         return result
+
+
+def failure(system: str, instances: dict[str, FmuInstance], exc: FMICallException) -> str:
+    """What failed, when, and the failing instance's log (every log when none is named); after
+    fmi2Fatal every instance is marked so that closing makes no further call into it."""
+    if exc.status == FATAL:  # no call into any instance after fmi2Fatal
+        for inst in instances.values():
+            inst.fatal = True
+    failing = getattr(exc, "instance", None)
+    logs = "\n".join(f"--- log of {n} ---\n{i.log_text()}" for n, i in instances.items()
+                     if failing is None or n == failing)
+    return f"{system}: FMU instance {failing!r} failed {_when(exc)}: {exc}\n{logs}"
 
 
 def _when(exc) -> str:
@@ -276,37 +346,15 @@ def _write_available(bus: Bus, name: str) -> None:
             bus.writer(name, inp)([bus.values[src]])
 
 
-def _run(exp, algorithm, bus, watchers, result, stops: StopRequests) -> None:
-    """Step from start to stop; an FMICallException leaves with ``time`` [s]: that of the
-    values concerned (the end of the step for a non-finite output, the step's start else)."""
-    t, h, span = exp.start, exp.step, exp.stop - exp.start
-    eps = 1e-9 * exp.step
+def _run(execution: Execution, watchers, stops: StopRequests) -> None:
+    """Step from start to stop, timing the loop into the result; watchers finish either way."""
+    result, bus = execution.result, execution.bus
     fmi0, wall0 = bus.fmi_time(), time.perf_counter()
     gc_was_on = gc.isenabled()
     gc.disable()  # the loop makes no reference cycles; full collections would cost ms each
     try:
-        while t < exp.stop - eps:
-            stops.check(t)
-            h_try = min(h, exp.stop - t)
-            try:
-                accepted, h_next = algorithm.step(t, h_try)
-            except FMICallException as exc:
-                exc.time = t + h_try if isinstance(exc, NonFiniteOutput) else t
-                raise
-            if not accepted:
-                result.rejected += 1
-                h = h_next
-                continue
-            result.steps += 1
-            t = exp.start + span if exp.stop - (t + h_try) <= eps else t + h_try
-            h = h_next if exp.tolerance > 0 else exp.step
-            try:
-                for w in watchers:
-                    w.stepped(t, bus)
-            except FMICallException as exc:  # a recorded-only output at t
-                exc.time = t
-                raise
-        stops.check(t)  # a signal during the last step: the caller still wants to stop
+        execution.advance(execution.system.experiment.stop, stops, watchers)
+        stops.check(execution.t)  # a signal during the last step: the caller still wants to stop
     finally:
         if gc_was_on:
             gc.enable()

@@ -105,24 +105,7 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
     FMU does not start at its baked values.
     """
     out = Path(out)
-    if not out.parent.is_dir():
-        raise FileNotFoundError(f"cannot write {out}: folder {out.parent} does not exist")
-    inputs = {comp.fmu.resolve(): f"{comp.name}'s FMU" for comp in system.components.values()}
-    if system.path is not None:
-        inputs[Path(system.path).resolve()] = "the scenario file"
-    if out.resolve() in inputs:
-        raise ValueError(f"cannot write {out}: it is {inputs[out.resolve()]}, which the package "
-                         "is made from")
-    sources: dict[str, Path] = {}
-    for comp in system.components.values():
-        if not comp.fmu.is_file():
-            raise FileNotFoundError(f"{comp.name}: FMU file {comp.fmu} does not exist")
-        other = sources.setdefault(comp.fmu.name, comp.fmu)
-        if other.resolve() != comp.fmu.resolve():
-            raise ValueError(f"{comp.name}: FMU files {other} and {comp.fmu} share the name "
-                             f"{comp.fmu.name} and cannot both go to resources/")
-    for path in sources.values():
-        check_entries(path)
+    packed_files(system, out, "package")
     entries = _entries(system, bake)
     ssd = ET.tostring(_ssd(system, entries), encoding="UTF-8", xml_declaration=True)
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_ssp_") as tmp:
@@ -136,6 +119,33 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
             for entry, path in files.items():
                 zf.write(path, f"resources/{entry}")
     return out
+
+
+def packed_files(system: System, out: Path, made: str) -> dict[str, Path]:
+    """The FMU files of ``system`` by file name, checked for packing them into ``out``, the
+    ``made`` (package, FMU) to write: FileNotFoundError naming the file if ``out``'s folder or an
+    FMU does not exist; ValueError if ``out`` is one of the FMUs or the scenario file (writing it
+    would destroy what it packs), two different FMU files share a name, or an FMU has an unsafe
+    archive entry (fmu_archive.check_entries)."""
+    if not out.parent.is_dir():
+        raise FileNotFoundError(f"cannot write {out}: folder {out.parent} does not exist")
+    inputs = {comp.fmu.resolve(): f"{comp.name}'s FMU" for comp in system.components.values()}
+    if system.path is not None:
+        inputs[Path(system.path).resolve()] = "the scenario file"
+    if out.resolve() in inputs:
+        raise ValueError(f"cannot write {out}: it is {inputs[out.resolve()]}, which the {made} "
+                         "is made from")
+    sources: dict[str, Path] = {}
+    for comp in system.components.values():
+        if not comp.fmu.is_file():
+            raise FileNotFoundError(f"{comp.name}: FMU file {comp.fmu} does not exist")
+        other = sources.setdefault(comp.fmu.name, comp.fmu)
+        if other.resolve() != comp.fmu.resolve():
+            raise ValueError(f"{comp.name}: FMU files {other} and {comp.fmu} share the name "
+                             f"{comp.fmu.name} and cannot both be packed")
+    for path in sources.values():
+        check_entries(path)
+    return sources
 
 
 def _entries(system: System, bake: bool) -> dict[str, tuple[str, dict]]:
@@ -246,7 +256,7 @@ def _ssd(system: System, entries: dict[str, tuple[str, dict]]) -> ET.Element:
                           startConnector=c.output, endElement=c.target, endConnector=c.input)
     if units:
         declared = ET.SubElement(root, f"{{{SSD}}}Units")
-        for name, base in _base_units(system, units).items():
+        for name, base in base_units(system, units).items():
             ET.SubElement(ET.SubElement(declared, f"{{{SSC}}}Unit", name=name), f"{{{SSC}}}BaseUnit", base)
     exp = system.experiment
     default = ET.SubElement(root, f"{{{SSD}}}DefaultExperiment", startTime=repr(exp.start),
@@ -262,7 +272,7 @@ def _ssd(system: System, entries: dict[str, tuple[str, dict]]) -> ET.Element:
 _BASE = ("kg", "m", "s", "A", "K", "mol", "cd", "rad", "factor", "offset")
 
 
-def _base_units(system: System, used: dict[str, dict]) -> dict[str, dict[str, str]]:
+def base_units(system: System, used: dict[str, dict]) -> dict[str, dict[str, str]]:
     """The SSD's units: each of ``used`` (unit -> the instances with a connector in it) with the
     attributes of its SI base unit, as each of those FMUs defines it (every unit an FMU uses is
     among its UnitDefinitions: fmpy's validation refused it at loading otherwise). Raises

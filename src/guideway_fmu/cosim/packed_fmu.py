@@ -1,0 +1,219 @@
+"""The slave of a packed FMU (export_fmu.py): a scenario's system inside one FMI 2.0 CS FMU.
+
+The FMU's package carries the scenario (``packed/system.toml``, FMUs by file name) and its
+FMUs (``packed/*.fmu``). Its variables, all named ``<instance>.<variable>`` with the inner
+FMU's type, unit and description:
+
+* parameters: every parameter of every instance (variability fixed: applied when
+  initialisation ends), starting at the scenario's value, else at the inner FMU's start;
+* inputs: the inputs that neither a connection nor the coupling algorithm feeds (tangent
+  links), starting at the scenario's value, else at the inner FMU's start;
+* outputs: every numeric output of every instance, no direct feedthrough (an input set at a
+  communication point acts over the next step; the outputs are those at the point).
+
+Life cycle: instantiation extracts and instantiates the inner FMUs (each into its own
+``guideway-fmu-*`` temporary folder, fmu_instance.py); leaving initialisation initialises them
+with the parameters and inputs as set; each ``doStep(t, H)`` holds the inputs over the interval
+while our master (master.Execution: the scenario's algorithm, step and step-size control) steps
+the system to t + H, ending its last inner step there; terminate (or freeing the instance)
+terminates and frees the inner instances and deletes their folders. A non-finite input, an inner
+FMU that fails or refuses a parameter: fmi2Discard with a logged message naming it (pythonfmu
+can return no other failure status without ending the process's instances).
+"""
+from __future__ import annotations
+
+import math
+import re
+import sys
+from pathlib import Path
+from xml.etree.ElementTree import Element, SubElement
+
+import numpy as np
+from fmpy.fmi1 import FMICallException
+
+from ..components.runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial,
+                                  Fmi2Slave, Fmi2Status, Fmi2Variability, Integer, Real, String)
+from .master import Execution, Result, SimulationError, failure
+from .recording import Recording
+from .interrupts import StopRequests
+from .ssp import base_units
+from .system import load
+
+DATA = "packed"  # the package's folder holding the scenario and its FMUs
+SCENARIO = "system.toml"
+_TYPES = {"Real": Real, "Integer": Integer, "Enumeration": Integer, "Boolean": Boolean,
+          "String": String}
+_PARSE = {"Real": float, "Integer": int, "Enumeration": int, "Boolean": lambda t: t in ("true", "1"),
+          "String": str}
+
+
+def data_folder() -> Path:
+    """The folder of the scenario and FMUs in the package this module was copied into."""
+    return Path(__file__).resolve().parents[1] / DATA
+
+
+def model_identifier(name: str) -> str:
+    """A C identifier from a scenario's name (the packed FMU's modelName and binary's name)."""
+    ident = re.sub(r"\W", "_", name, flags=re.ASCII)
+    return ident if re.match(r"[A-Za-z_]", ident) else f"_{ident}"
+
+
+def fed_inputs(system) -> set[tuple[str, str]]:
+    """(instance, input) that a connection or the algorithm's links feed."""
+    from .algorithms import ALGORITHMS
+    links = ALGORITHMS[system.experiment.algorithm].links(system)
+    return {(c.target, c.input) for c in system.connections} | set(links.values())
+
+
+class PackedSystem(Fmi2Slave):
+    """A scenario's connected system run by the master (module doc)."""
+
+    author = "guideway-fmu"
+    license = "MIT"
+    version = "0.1.0"
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self.system = load(data_folder() / SCENARIO)
+        exp = self.system.experiment
+        self.modelName = model_identifier(self.system.name)
+        self.description = (f"The system of scenario {self.system.name} run by guideway-fmu's "
+                            f"master ({exp.algorithm}, step {exp.step:g} s)")
+        self.default_experiment = DefaultExperiment(exp.start, exp.stop, exp.step)
+        self.values: dict[str, object] = {}  # "<instance>.<variable>" -> value
+        self.inputs: list[tuple[str, str]] = []
+        self.outputs: list[tuple[str, str]] = []
+        self.parameters: list[tuple[str, str]] = []
+        self.units: dict[str, str] = {}
+        self.start, self.stop = exp.start, exp.stop
+        fed = fed_inputs(self.system)
+        for inst, variables in self.system.variables.items():
+            given = self.system.components[inst].parameters
+            for v in variables.values():
+                key = (inst, v.name)
+                if v.causality == "parameter" or v.causality == "input" and key not in fed:
+                    start = given.get(v.name, None if v.start is None else _PARSE[v.type](v.start))
+                    self._register(key, v, start)
+                    (self.parameters if v.causality == "parameter" else self.inputs).append(key)
+                elif v.causality == "output" and v.type != "String":
+                    self._register(key, v, _PARSE[v.type](v.start or "0"))
+                    self.outputs.append(key)
+        self.execution: Execution | None = None
+        if Path(self.resources or "").name == "resources":  # in an extracted FMU, not the build
+            result = Result(self.system.name, exp.algorithm, Recording(np.array([]), {}, {}), {})
+            self.execution = Execution(self.system, result, set(self.outputs))
+            self.execution.instantiate(StopRequests())
+
+    def _register(self, key, v, start) -> None:
+        name = ".".join(key)
+        self.values[name] = start
+        causality = Fmi2Causality[v.causality]
+        options = ({"variability": Fmi2Variability.fixed} if v.causality == "parameter" else
+                   {"variability": Fmi2Variability.continuous if v.type == "Real"
+                    else Fmi2Variability.discrete})
+        if v.causality == "output":
+            options["initial"] = Fmi2Initial.calculated
+        self.register_variable(_TYPES[v.type](
+            name, causality=causality, description=v.description, getter=lambda: self.values[name],
+            setter=None if v.causality == "output" else lambda x: self.values.__setitem__(name, x),
+            **options))
+        if v.type == "Real" and v.unit:
+            self.units[name] = v.unit
+
+    # -- FMI calls ------------------------------------------------------------------------
+    def setup_experiment(self, start_time, stop_time, tolerance):
+        self.start = start_time
+        if stop_time is not None and stop_time > start_time:
+            self.stop = stop_time
+
+    def exit_initialization_mode(self):
+        exp = self.system.experiment
+        if (self.start, self.stop) != (exp.start, exp.stop):
+            self.execution.system = self.system.with_changes(start=self.start, stop=self.stop)
+            self.execution.t = self.start
+        given: dict[str, dict] = {}
+        for inst, var in self.parameters + self.inputs:
+            value = self.values[f"{inst}.{var}"]
+            if value is not None:
+                given.setdefault(inst, {})[var] = value
+        self._guarded(lambda: self.execution.initialise(StopRequests(), given))
+
+    def do_step(self, current_time: float, step_size: float) -> bool:
+        bad = next((n for n in (f"{i}.{v}" for i, v in self.inputs)
+                    if isinstance(self.values[n], float) and not math.isfinite(self.values[n])),
+                   None)
+        if bad is not None:
+            self._error(f"input {bad} must be finite, got {self.values[bad]!r}")
+            return False
+        if not (math.isfinite(step_size) and step_size > 0.0):
+            self._error(f"communication step size must be > 0, got {step_size}")
+            return False
+        return self._guarded(lambda: self._advance(current_time + step_size))
+
+    def _advance(self, until: float) -> None:
+        execution = self.execution
+        for inst, var in self.inputs:
+            execution.instances[inst].set(var, self.values[f"{inst}.{var}"])
+        execution.advance(until, StopRequests())
+
+    def _read_outputs(self) -> None:
+        bus = self.execution.bus
+        bus.observe()
+        for key in self.outputs:
+            self.values[".".join(key)] = bus.values[key]
+
+    def _guarded(self, action) -> bool:
+        """``action()`` and the outputs read; False with the failure logged if it fails."""
+        if self.execution is None:
+            self._error("no inner system: the instance was terminated")
+            return False
+        try:
+            action()
+            self._read_outputs()
+            return True
+        except FMICallException as exc:
+            self._error(failure(self.system.name, self.execution.instances, exc))
+        except (SimulationError, ValueError, KeyError, TypeError) as exc:
+            self._error(str(exc))
+        return False
+
+    def _error(self, message: str) -> None:
+        """Log ``message`` as an error and print it on stderr (pythonfmu drops messages when
+        logging is off)."""
+        self.log(f"{self.instance_name}: {message}", Fmi2Status.error)
+        print(f"{self.modelName} {self.instance_name}: {message}", file=sys.stderr)
+
+    def terminate(self):
+        self.close()
+
+    def close(self) -> None:
+        """Terminate and free the inner instances and delete their folders (once)."""
+        if self.execution is not None:
+            self.execution.close()
+            self.execution = None
+
+    def __del__(self):  # fmi2FreeInstance without fmi2Terminate
+        self.close()
+
+    # -- modelDescription -------------------------------------------------------------------
+    def to_xml(self, model_options=dict()) -> Element:
+        root = super().to_xml(model_options)
+        for node in root.find("ModelVariables"):
+            if node.get("name") in self.units:
+                node.find("Real").set("unit", self.units[node.get("name")])
+        used = {}
+        for name, unit in self.units.items():
+            used.setdefault(unit, {})[name.split(".", 1)[0]] = None
+        units = Element("UnitDefinitions")
+        for unit, base in sorted(base_units(self.system, used).items()):
+            SubElement(SubElement(units, "Unit", name=unit), "BaseUnit", base)
+        root.insert(list(root).index(root.find("CoSimulation")) + 1, units)
+        root.remove(root.find("ModelStructure"))
+        structure = SubElement(root, "ModelStructure")
+        index = {v.name: i + 1 for i, v in enumerate(self.vars.values())}
+        for section in ("Outputs", "InitialUnknowns"):
+            node = SubElement(structure, section)
+            for inst, var in self.outputs:  # initially: on every parameter and input
+                SubElement(node, "Unknown", index=str(index[f"{inst}.{var}"]),
+                           **({"dependencies": ""} if section == "Outputs" else {}))
+        return root
