@@ -1,4 +1,4 @@
-"""Command line: ``guideway-fmu build | host-env | scenarios | run | sweep | verify | export-ssp | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball | wear``."""
+"""Command line: ``guideway-fmu build | host-env | scenarios | run | sweep | verify | export-ssp | export-fmu | diagnose | demo | facts | ehl | ehl-cycle | modes | feed-unit | ball-to-ball | wear``."""
 from __future__ import annotations
 
 import argparse
@@ -250,6 +250,10 @@ def main(argv: list[str] | None = None) -> int:
                    help="pack the FMUs unchanged; the parameters are then only in the SSD's "
                         "bindings, which fmpy.ssp ignores (default: each FMU copy starts at its "
                         "instance's parameters)")
+    p = sub.add_parser("export-fmu", help="pack the scenario's system into one FMI 2.0 "
+                       "co-simulation FMU that runs our master inside (docs/export-fmu.md)")
+    _scenario_args(p)
+    p.add_argument("out", type=Path, help="the .fmu file to write")
     p = sub.add_parser("diagnose", help="find, name and close the gap between a measured run and the model")
     p.add_argument("run_dir", type=Path, help="measured run: rig.toml + data.csv (docs/measured-run.md)")
     p.add_argument("--out", type=Path, required=True, help="output folder: diagnosis.json, fit.csv, report.html, plots")
@@ -302,6 +306,9 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "export-ssp":
             from .cosim.ssp import export_ssp
             print(export_ssp(_load(args), args.out, bake=not args.no_bake))
+        elif args.command == "export-fmu":
+            from .cosim.export_fmu import export_fmu
+            print(export_fmu(_load(args), args.out))
         elif args.command == "diagnose":
             from .diagnose.workflow import diagnose
             diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus)

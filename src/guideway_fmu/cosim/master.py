@@ -209,7 +209,8 @@ class Execution:
         self.algorithm = cls(self.bus, system)
 
     def advance(self, until: float, stops: StopRequests, watchers=()) -> None:
-        """Step from ``t`` to ``until`` [s] (the last step shortened to end there), notifying
+        """Step from ``t`` to ``until`` [s] (a step that would pass it shortened to end there, one
+        that ends there to round-off taken as it is, ``t`` then set to ``until``), notifying
         ``watchers`` after every accepted step; inputs set from outside are held. An
         FMICallException leaves with ``time`` [s]: that of the values concerned (the end of the
         step for a non-finite output, the step's start else)."""
@@ -219,7 +220,7 @@ class Execution:
         try:
             while t < until - eps:
                 stops.check(t)
-                h_try = min(h, until - t)
+                h_try = h if t + h <= until + eps else until - t  # h itself when it ends there
                 try:
                     accepted, h_next = algorithm.step(t, h_try)
                 except FMICallException as exc:

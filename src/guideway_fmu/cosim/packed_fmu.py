@@ -47,9 +47,11 @@ _PARSE = {"Real": float, "Integer": int, "Enumeration": int, "Boolean": lambda t
           "String": str}
 
 
-def data_folder() -> Path:
-    """The folder of the scenario and FMUs in the package this module was copied into."""
-    return Path(__file__).resolve().parents[1] / DATA
+def data_folder(resources: str) -> Path:
+    """The folder of the scenario and FMUs in the package this module was copied into, under
+    the instance's ``resources`` (not beside this module's file: a module stays imported from
+    the folder of the first instance, which its host may have deleted since)."""
+    return Path(resources) / __name__.split(".", 1)[0] / DATA
 
 
 def model_identifier(name: str) -> str:
@@ -74,7 +76,7 @@ class PackedSystem(Fmi2Slave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.system = load(data_folder() / SCENARIO)
+        self.system = load(data_folder(self.resources) / SCENARIO)
         exp = self.system.experiment
         self.modelName = model_identifier(self.system.name)
         self.description = (f"The system of scenario {self.system.name} run by guideway-fmu's "
@@ -188,7 +190,7 @@ class PackedSystem(Fmi2Slave):
 
     def close(self) -> None:
         """Terminate and free the inner instances and delete their folders (once)."""
-        if self.execution is not None:
+        if getattr(self, "execution", None) is not None:  # None: __init__ failed or closed
             self.execution.close()
             self.execution = None
 

@@ -1,0 +1,218 @@
+"""The packed FMU (export-fmu): a scenario's system in one FMU, run in our master, fmpy and
+libcosim next to HarmonicForce, an FMU written in C (harmonic_force/, compiled here with the
+system's C compiler; the tests that need it are skipped without one).
+
+The independent check of the packing is the unpacked system: the same FMUs, the same C FMU
+wired to the same input, run by our master. With the communication points on the inner steps
+the packed FMU makes the same FMI calls with the same values in the same order, so the two
+agree bit for bit (assert_array_equal, no tolerance).
+"""
+from __future__ import annotations
+
+import math
+import re
+import shutil
+import subprocess
+import tomllib
+import zipfile
+from pathlib import Path
+
+import fmpy
+import numpy as np
+import pytest
+import tomli_w
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+from fmpy.ssp.simulation import simulate_ssp  # fmpy.ssp.simulate parses sys.argv on import
+from fmpy.validation import validate_fmu
+
+from guideway_fmu import cli, scenarios
+from guideway_fmu.cosim import master, ssp, system
+from guideway_fmu.cosim.export_fmu import export_fmu
+
+SCENARIO = "soleimanian2020_9000N_4500Hz"
+STEP = 4e-6  # s, the scenario's macro step
+STOP = 400 * STEP  # s
+SOURCE = Path(__file__).with_name("harmonic_force")
+COMPILER = shutil.which("cc") or shutil.which("gcc")
+needs_cc = pytest.mark.skipif(COMPILER is None, reason="no C compiler (cc or gcc) for HarmonicForce")
+WATCHED = ["Carriage.y", "Carriage.y_dot", "Contact.F_contact", "Contact.F_upper", "Contact.h_upper"]
+
+
+def compile_harmonic_force(folder: Path) -> Path:
+    """HarmonicForce.fmu in ``folder``: harmonic_force.c compiled against fmpy's FMI headers."""
+    library = folder / "HarmonicForce.so"
+    subprocess.run([COMPILER, "-shared", "-fPIC", "-O2", "-I", str(Path(fmpy.__file__).parent / "c-code"),
+                    str(SOURCE / "harmonic_force.c"), "-o", str(library), "-lm"], check=True)
+    fmu = folder / "HarmonicForce.fmu"
+    with zipfile.ZipFile(fmu, "w") as zf:
+        zf.write(SOURCE / "modelDescription.xml", "modelDescription.xml")
+        zf.write(SOURCE / "harmonic_force.c", "sources/harmonic_force.c")
+        zf.write(library, "binaries/linux64/HarmonicForce.so")
+    return fmu
+
+
+@pytest.fixture(scope="module")
+def scenario(fmu_dir):
+    return system.load(scenarios.find(SCENARIO), fmu_dir)
+
+
+@pytest.fixture(scope="module")
+def packed(scenario, tmp_path_factory):
+    return export_fmu(scenario, tmp_path_factory.mktemp("packed") / "Loaded.fmu")
+
+
+@pytest.fixture(scope="module")
+def force(tmp_path_factory):
+    if COMPILER is None:
+        pytest.skip("no C compiler (cc or gcc) for HarmonicForce")
+    return compile_harmonic_force(tmp_path_factory.mktemp("harmonic_force"))
+
+
+def unpacked_with_force(scenario, force: Path, folder: Path) -> system.System:
+    """The scenario with HarmonicForce's F on Carriage.F_ext, run for STOP."""
+    system.dump(scenario, folder / "unpacked.toml")
+    data = tomllib.loads((folder / "unpacked.toml").read_text())
+    data["components"]["Force"] = {"fmu": str(force)}
+    data["connections"].append({"from": "Force.F", "to": "Carriage.F_ext"})
+    data["record"] = {"variables": WATCHED}
+    data["experiment"]["stop"] = STOP
+    (folder / "unpacked.toml").write_text(tomli_w.dumps(data))
+    return system.load(folder / "unpacked.toml")
+
+
+def packed_with_force(packed: Path, force: Path, step: float = STEP,
+                      algorithm: str = "gauss-seidel") -> system.System:
+    b = system.Builder("packed").experiment(stop=STOP, step=step, algorithm=algorithm)
+    b.component("Force", force).component("Rig", packed).connect("Force.F", "Rig.Carriage.F_ext")
+    return b.record([f"Rig.{w}" for w in WATCHED]).system()
+
+
+def test_the_packed_fmu_validates_clean_and_declares_the_systems_free_inputs_outputs_and_parameters(
+        packed, scenario):
+    assert validate_fmu(str(packed)) == []
+    md = fmpy.read_model_description(str(packed))
+    by = {v.name: v for v in md.modelVariables}
+    assert sorted(n for n, v in by.items() if v.causality == "input") == ["Carriage.F_ext", "Feed.u_cmd"]
+    outputs = [f"{i}.{n}" for i, vs in scenario.variables.items() for n, v in vs.items()
+               if v.causality == "output"]
+    assert [n for n, v in by.items() if v.causality == "output"] == outputs
+    assert float(by["Carriage.load_amplitude"].start) == 9000.0  # the scenario's value
+    assert float(by["Carriage.mass"].start) == float(scenario.variables["Carriage"]["mass"].start)
+    assert by["Feed.profile"].type == "String" and by["Feed.profile"].start == "biharmonic"
+    for name in outputs:
+        inst, var = name.split(".", 1)
+        inner = scenario.variables[inst][var]
+        assert (by[name].unit, by[name].description) == (inner.unit, inner.description)
+    assert md.coSimulation.modelIdentifier == SCENARIO
+    exp = md.defaultExperiment
+    assert (float(exp.stopTime), float(exp.stepSize)) == (scenario.experiment.stop, STEP)
+
+
+@needs_cc
+def test_the_c_fmu_validates_clean(force):
+    assert validate_fmu(str(force)) == []
+
+
+@needs_cc
+def test_packed_equals_unpacked_bit_for_bit_in_our_master_next_to_the_c_fmu(
+        scenario, packed, force, tmp_path):
+    unpacked = master.simulate(unpacked_with_force(scenario, force, tmp_path)).recording
+    result = master.simulate(packed_with_force(packed, force))
+    assert result.steps == 400
+    for name in WATCHED:
+        np.testing.assert_array_equal(result.recording.columns[f"Rig.{name}"], unpacked.columns[name])
+    assert np.ptp(unpacked.columns["Contact.F_upper"]) > 500.0  # the loads do oscillate
+
+
+def test_a_communication_step_of_ten_inner_steps_gives_the_same_trajectory(scenario, packed):
+    """Inputs constant: the inner master takes the same steps whatever the communication step;
+    the FMUs' time differs in the last bits (t + h summed inside or outside), hence rtol 1e-12."""
+    runs = [fmpy.simulate_fmu(str(packed), stop_time=STOP, step_size=h, output_interval=10 * STEP,
+                              output=WATCHED, start_values={"Carriage.F_ext": 500.0})
+            for h in (STEP, 10 * STEP)]
+    assert len(runs[0]) == len(runs[1]) == 41
+    for name in WATCHED:
+        np.testing.assert_allclose(runs[1][name], runs[0][name], rtol=1e-12,
+                                   atol=1e-12 * np.abs(runs[0][name]).max())
+
+
+@needs_cc
+@pytest.mark.slow
+def test_libcosim_and_fmpy_run_the_packed_fmu_next_to_the_c_fmu_as_our_jacobi_master_does(
+        packed, force, tmp_path):
+    """Through an SSP package of [HarmonicForce, packed FMU]: libcosim to round-off (its clock
+    counts integer ns, the FMUs see t off by ~1e-19 s), fmpy to round-off one step later (its
+    first step sees 0.0 on every connected input: the force is 0 at t = 0 anyway)."""
+    outer = packed_with_force(packed, force, algorithm="jacobi")
+    ours = master.simulate(outer).recording
+    package = ssp.export_ssp(outer, tmp_path / "outer.ssp")
+    names = [f"Rig.{w}" for w in WATCHED]
+    _, libcosim = ssp.run_libcosim(package, names, 400)
+    rows = simulate_ssp(str(package), start_time=0.0, stop_time=STOP, step_size=STEP)
+    for name in names:
+        scale = np.abs(ours.columns[name]).max()
+        np.testing.assert_allclose(libcosim[name], ours.columns[name], rtol=1e-11, atol=1e-11 * scale)
+        np.testing.assert_allclose(rows[name][:400], ours.columns[name][1:], rtol=1e-11,
+                                   atol=1e-11 * scale)
+
+
+def test_a_non_finite_input_and_a_bad_parameter_discard_the_step_with_a_message(packed, tmp_path,
+                                                                                capfd):
+    md = fmpy.read_model_description(str(packed))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    fmpy.extract(str(packed), str(tmp_path))
+    for name, value, when in (("Carriage.F_ext", math.nan, "step"), ("Carriage.mass", -1.0, "init")):
+        fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(tmp_path),
+                        modelIdentifier=md.coSimulation.modelIdentifier, instanceName="rig")
+        fmu.instantiate()
+        fmu.setupExperiment(startTime=0.0, stopTime=STOP)
+        fmu.enterInitializationMode()
+        if when == "init":
+            fmu.setReal([vr[name]], [value])
+        fmu.exitInitializationMode()
+        if when == "step":
+            fmu.setReal([vr[name]], [value])
+        with pytest.raises(FMICallException) as failed:
+            fmu.doStep(0.0, STEP)
+        assert failed.value.status == 2  # fmi2Discard
+        fmu.terminate()
+        fmu.freeInstance()
+        assert name in capfd.readouterr().err
+
+
+def test_inner_fmus_are_extracted_at_instantiation_and_removed_at_terminate(packed, tmp_path,
+                                                                            monkeypatch):
+    import tempfile
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
+    (tmp_path / "tmp").mkdir()
+    md = fmpy.read_model_description(str(packed))
+    fmpy.extract(str(packed), str(tmp_path / "fmu"))
+    fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(tmp_path / "fmu"),
+                    modelIdentifier=md.coSimulation.modelIdentifier, instanceName="rig")
+    fmu.instantiate()
+    assert len(list((tmp_path / "tmp").glob("guideway-fmu-*"))) == 3
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    fmu.doStep(0.0, STEP)
+    fmu.terminate()
+    assert list((tmp_path / "tmp").glob("guideway-fmu-*")) == []
+    fmu.freeInstance()
+
+
+@pytest.mark.parametrize("out, message", [
+    ("loaded.zip", "the name of an FMU file ends in .fmu"),
+    ("VerticalDynamics.fmu", "it is Carriage's FMU, which the FMU is made from"),
+    ("missing/loaded.fmu", "folder .*missing does not exist"),
+])
+def test_export_fmu_command_refuses_bad_output_paths_with_exit_2(fmu_dir, out, message, capsys):
+    before = (fmu_dir / "VerticalDynamics.fmu").read_bytes()
+    assert cli.main(["export-fmu", SCENARIO, str(fmu_dir / out), "--fmus", str(fmu_dir)]) == 2
+    assert re.search(message, capsys.readouterr().err)
+    assert (fmu_dir / "VerticalDynamics.fmu").read_bytes() == before
+
+
+def test_export_fmu_command_names_an_unknown_scenario(tmp_path, capsys):
+    assert cli.main(["export-fmu", "no_such_scenario", str(tmp_path / "x.fmu")]) == 2
+    assert "scenario 'no_such_scenario' is neither a file nor a shipped scenario" in capsys.readouterr().err
