@@ -13,6 +13,7 @@ import math
 import re
 import shutil
 import subprocess
+import sys
 import tomllib
 import zipfile
 from pathlib import Path
@@ -216,3 +217,28 @@ def test_export_fmu_command_refuses_bad_output_paths_with_exit_2(fmu_dir, out, m
 def test_export_fmu_command_names_an_unknown_scenario(tmp_path, capsys):
     assert cli.main(["export-fmu", "no_such_scenario", str(tmp_path / "x.fmu")]) == 2
     assert "scenario 'no_such_scenario' is neither a file nor a shipped scenario" in capsys.readouterr().err
+
+
+@needs_cc
+@pytest.mark.slow
+def test_the_packed_fmu_exits_cleanly_in_a_c_host_and_agrees_with_fmpy(packed, tmp_path):
+    """The inner pythonfmu FMUs re-enter the interpreter through ctypes from the outer FMU's
+    Python: in a C host (components/c_host.c) as in Python, 3 runs, each exit status 0."""
+    from guideway_fmu.components import host_env
+    environment = host_env.host_environment()
+    executable = host_env.compile_c_host(tmp_path)
+    runs = [host_env.run_in_c_host(executable, packed, environment, work_dir=tmp_path, steps=10)
+            for _ in range(3)]
+    assert [r.status for r in runs] == [0, 0, 0], runs[0].stderr[-500:]
+    ref = fmpy.simulate_fmu(str(packed), stop_time=10 * STEP, step_size=STEP, output=WATCHED)
+    for name in WATCHED:
+        assert runs[0].outputs[name] == pytest.approx(ref[name][-1], rel=1e-12, abs=1e-30)
+
+
+@pytest.mark.slow
+def test_a_python_host_running_the_packed_fmu_exits_with_status_0(packed):
+    script = ("import fmpy\nfor _ in range(5):\n"
+              f"    fmpy.simulate_fmu({str(packed)!r}, stop_time={10 * STEP!r}, step_size={STEP!r})\n")
+    runs = [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+            for _ in range(3)]
+    assert [r.returncode for r in runs] == [0, 0, 0], runs[0].stderr[-500:]

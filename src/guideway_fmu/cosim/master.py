@@ -94,13 +94,13 @@ class Bus:
             self._observe[name] = self._readers(inst, observed - exchanged)
             inputs = sorted(i for t, i in feeds if t == name)
             self._writes[name] = [(inst.writer(group), [feeds[(name, i)] for i in group])
-                                  for group in _by_type(inst, inputs)]
+                                  for group in by_type(inst, inputs)]
 
     @staticmethod
     def _readers(inst: FmuInstance, keys: set):
         mine = sorted(v for i, v in keys if i == inst.name)
         return [(inst.reader(group), [(inst.name, v) for v in group])
-                for group in _by_type(inst, mine)]
+                for group in by_type(inst, mine)]
 
     def _read(self, groups) -> None:
         values = self.values
@@ -113,8 +113,9 @@ class Bus:
     def read_outputs(self, name: str) -> None:
         self._read(self._reads[name])
 
-    def observe(self) -> None:
-        for groups in self._observe.values():
+    def observe(self, name: str | None = None) -> None:
+        """Read the observed-only variables of the instance ``name`` (default: of every one)."""
+        for groups in self._observe.values() if name is None else [self._observe[name]]:
             self._read(groups)
 
     def write_inputs(self, name: str) -> None:
@@ -154,7 +155,9 @@ class Bus:
         return sum(i.fmi_time for i in self.instances.values())
 
 
-def _by_type(inst: FmuInstance, names):
+def by_type(inst: FmuInstance, names) -> list[list[str]]:
+    """``names`` of ``inst``'s variables in groups of one type, Strings left out (one batched
+    FMI call per group)."""
     groups = {}
     for n in names:
         groups.setdefault(inst.variable(n).type, []).append(n)

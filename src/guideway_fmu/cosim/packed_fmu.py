@@ -33,7 +33,7 @@ from fmpy.fmi1 import FMICallException
 
 from ..components.runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial,
                                   Fmi2Slave, Fmi2Status, Fmi2Variability, Integer, Real, String)
-from .master import Execution, Result, SimulationError, failure
+from .master import Execution, Result, SimulationError, by_type, failure
 from .recording import Recording
 from .interrupts import StopRequests
 from .ssp import base_units
@@ -100,6 +100,13 @@ class PackedSystem(Fmi2Slave):
                 elif v.causality == "output" and v.type != "String":
                     self._register(key, v, _PARSE[v.type](v.start or "0"))
                     self.outputs.append(key)
+        self._input_names = [".".join(k) for k in self.inputs]
+        self._outputs_of: dict[str, list] = {}  # instance -> [(bus key, name)] of its outputs
+        for key in self.outputs:
+            self._outputs_of.setdefault(key[0], []).append((key, ".".join(key)))
+        self._stale: set[str] = set()  # instances whose outputs changed since last read
+        self._write = None  # the batched writers of the inputs, made at the first change
+        self._held: list = []  # the input values last written to the inner instances
         self.execution: Execution | None = None
         if Path(self.resources or "").name == "resources":  # in an extracted FMU, not the build
             result = Result(self.system.name, exp.algorithm, Recording(np.array([]), {}, {}), {})
@@ -115,8 +122,10 @@ class PackedSystem(Fmi2Slave):
                     else Fmi2Variability.discrete})
         if v.causality == "output":
             options["initial"] = Fmi2Initial.calculated
+        getter = ((lambda: self._output(key[0], name)) if v.causality == "output"
+                  else lambda: self.values[name])
         self.register_variable(_TYPES[v.type](
-            name, causality=causality, description=v.description, getter=lambda: self.values[name],
+            name, causality=causality, description=v.description, getter=getter,
             setter=None if v.causality == "output" else lambda x: self.values.__setitem__(name, x),
             **options))
         if v.type == "Real" and v.unit:
@@ -139,10 +148,17 @@ class PackedSystem(Fmi2Slave):
             if value is not None:
                 given.setdefault(inst, {})[var] = value
         self._guarded(lambda: self.execution.initialise(StopRequests(), given))
+        self._held = [given.get(i, {}).get(v) for i, v in self.inputs]
+
+    def _writers(self) -> list:
+        """(batched writer, names in self.values) per inner instance and type of the inputs."""
+        instances = self.execution.instances
+        return [(instances[inst].writer(group), [f"{inst}.{v}" for v in group])
+                for inst in dict.fromkeys(i for i, _ in self.inputs)
+                for group in by_type(instances[inst], [v for i, v in self.inputs if i == inst])]
 
     def do_step(self, current_time: float, step_size: float) -> bool:
-        bad = next((n for n in (f"{i}.{v}" for i, v in self.inputs)
-                    if isinstance(self.values[n], float) and not math.isfinite(self.values[n])),
+        bad = next((n for n in self._input_names if isinstance(self.values[n], float) and not math.isfinite(self.values[n])),
                    None)
         if bad is not None:
             self._error(f"input {bad} must be finite, got {self.values[bad]!r}")
@@ -153,25 +169,42 @@ class PackedSystem(Fmi2Slave):
         return self._guarded(lambda: self._advance(current_time + step_size))
 
     def _advance(self, until: float) -> None:
-        execution = self.execution
-        for inst, var in self.inputs:
-            execution.instances[inst].set(var, self.values[f"{inst}.{var}"])
-        execution.advance(until, StopRequests())
+        """Hold the inputs as set (written to the inner instances where they changed) and step
+        the system to ``until`` [s]."""
+        held = [self.values[n] for n in self._input_names]
+        if held != self._held:
+            if self._write is None:
+                self._write = self._writers()
+            for write, names in self._write:
+                write([self.values[n] for n in names])
+            self._held = held
+        self.execution.advance(until, StopRequests())
 
-    def _read_outputs(self) -> None:
-        bus = self.execution.bus
-        bus.observe()
-        for key in self.outputs:
-            self.values[".".join(key)] = bus.values[key]
+    def _output(self, inst: str, name: str):
+        """An output's value, the outputs of its instance read from it first if it stepped
+        since; when that read fails (a non-finite value), the error logged and the last values
+        kept (a getter that raised would be fmi2Fatal for every instance of the process)."""
+        if inst in self._stale:
+            self._stale.discard(inst)
+            try:
+                self.execution.bus.observe(inst)
+            except FMICallException as exc:
+                self._error(failure(self.system.name, self.execution.instances, exc))
+            else:
+                values = self.execution.bus.values
+                for key, full in self._outputs_of[inst]:
+                    self.values[full] = values[key]
+        return self.values[name]
 
     def _guarded(self, action) -> bool:
-        """``action()`` and the outputs read; False with the failure logged if it fails."""
+        """``action()``, the outputs then to be read again; False with the failure logged if it
+        fails."""
         if self.execution is None:
             self._error("no inner system: the instance was terminated")
             return False
         try:
             action()
-            self._read_outputs()
+            self._stale.update(self._outputs_of)
             return True
         except FMICallException as exc:
             self._error(failure(self.system.name, self.execution.instances, exc))
@@ -193,6 +226,7 @@ class PackedSystem(Fmi2Slave):
         if getattr(self, "execution", None) is not None:  # None: __init__ failed or closed
             self.execution.close()
             self.execution = None
+            self._stale.clear()  # the outputs keep their last values
 
     def __del__(self):  # fmi2FreeInstance without fmi2Terminate
         self.close()
