@@ -242,3 +242,34 @@ def test_a_python_host_running_the_packed_fmu_exits_with_status_0(packed):
     runs = [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
             for _ in range(3)]
     assert [r.returncode for r in runs] == [0, 0, 0], runs[0].stderr[-500:]
+
+
+def test_export_fmu_command_writes_an_fmu_that_validates(fmu_dir, tmp_path, capsys):
+    out = tmp_path / "Unloaded.fmu"
+    assert cli.main(["export-fmu", "soleimanian2020_unloaded", str(out), "--fmus", str(fmu_dir),
+                     "--stop", "0.01"]) == 0
+    assert capsys.readouterr().out.strip() == str(out)
+    assert validate_fmu(str(out)) == []
+    md = fmpy.read_model_description(str(out))
+    assert float(md.defaultExperiment.stopTime) == 0.01
+    assert "Friction.F_friction" in {v.name for v in md.modelVariables if v.causality == "output"}
+
+
+def test_an_fmu_stepped_before_its_inner_system_initialised_discards_with_a_message(packed, tmp_path,
+                                                                                    capfd):
+    md = fmpy.read_model_description(str(packed))
+    fmpy.extract(str(packed), str(tmp_path))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(tmp_path),
+                    modelIdentifier=md.coSimulation.modelIdentifier, instanceName="rig")
+    fmu.instantiate()
+    fmu.setupExperiment(startTime=0.0, stopTime=1e-7)  # shorter than the scenario's step
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    with pytest.raises(FMICallException):
+        fmu.doStep(0.0, 1e-7)
+    assert fmu.getReal([vr["Carriage.y"]]) == [0.0]  # outputs stay readable
+    fmu.terminate()
+    fmu.freeInstance()
+    err = capfd.readouterr().err
+    assert "[experiment] key 'step'" in err and "was not initialised" in err

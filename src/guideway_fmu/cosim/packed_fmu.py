@@ -108,6 +108,7 @@ class PackedSystem(Fmi2Slave):
         self._write = None  # the batched writers of the inputs, made at the first change
         self._held: list = []  # the input values last written to the inner instances
         self.execution: Execution | None = None
+        self._ready = False  # the inner system initialised
         if Path(self.resources or "").name == "resources":  # in an extracted FMU, not the build
             result = Result(self.system.name, exp.algorithm, Recording(np.array([]), {}, {}), {})
             self.execution = Execution(self.system, result, set(self.outputs))
@@ -138,6 +139,10 @@ class PackedSystem(Fmi2Slave):
             self.stop = stop_time
 
     def exit_initialization_mode(self):
+        self._ready = self._guarded(self._initialise)
+
+    def _initialise(self) -> None:
+        """Initialise the inner instances with the experiment, parameters and inputs as set."""
         exp = self.system.experiment
         if (self.start, self.stop) != (exp.start, exp.stop):
             self.execution.system = self.system.with_changes(start=self.start, stop=self.stop)
@@ -147,7 +152,7 @@ class PackedSystem(Fmi2Slave):
             value = self.values[f"{inst}.{var}"]
             if value is not None:
                 given.setdefault(inst, {})[var] = value
-        self._guarded(lambda: self.execution.initialise(StopRequests(), given))
+        self.execution.initialise(StopRequests(), given)
         self._held = [given.get(i, {}).get(v) for i, v in self.inputs]
 
     def _writers(self) -> list:
@@ -158,8 +163,11 @@ class PackedSystem(Fmi2Slave):
                 for group in by_type(instances[inst], [v for i, v in self.inputs if i == inst])]
 
     def do_step(self, current_time: float, step_size: float) -> bool:
-        bad = next((n for n in self._input_names if isinstance(self.values[n], float) and not math.isfinite(self.values[n])),
-                   None)
+        if not self._ready:
+            self._error("the inner system was not initialised (see the messages before)")
+            return False
+        bad = next((n for n in self._input_names
+                    if isinstance(self.values[n], float) and not math.isfinite(self.values[n])), None)
         if bad is not None:
             self._error(f"input {bad} must be finite, got {self.values[bad]!r}")
             return False
