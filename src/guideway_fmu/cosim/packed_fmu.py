@@ -33,9 +33,10 @@ from fmpy.fmi1 import FMICallException
 
 from ..components.runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial,
                                   Fmi2Slave, Fmi2Status, Fmi2Variability, Integer, Real, String)
+from .algorithms import ALGORITHMS
+from .interrupts import StopRequests
 from .master import Execution, Result, SimulationError, by_type, failure
 from .recording import Recording
-from .interrupts import StopRequests
 from .ssp import base_units
 from .system import load
 
@@ -62,7 +63,6 @@ def model_identifier(name: str) -> str:
 
 def fed_inputs(system) -> set[tuple[str, str]]:
     """(instance, input) that a connection or the algorithm's links feed."""
-    from .algorithms import ALGORITHMS
     links = ALGORITHMS[system.experiment.algorithm].links(system)
     return {(c.target, c.input) for c in system.connections} | set(links.values())
 
@@ -112,7 +112,11 @@ class PackedSystem(Fmi2Slave):
         if Path(self.resources or "").name == "resources":  # in an extracted FMU, not the build
             result = Result(self.system.name, exp.algorithm, Recording(np.array([]), {}, {}), {})
             self.execution = Execution(self.system, result, set(self.outputs))
-            self.execution.instantiate(StopRequests())
+            try:
+                self.execution.instantiate(StopRequests())
+            except SimulationError:
+                self.close()  # the instances made so far; pythonfmu then reports no instance
+                raise
 
     def _register(self, key, v, start) -> None:
         name = ".".join(key)
@@ -166,20 +170,21 @@ class PackedSystem(Fmi2Slave):
         if not self._ready:
             self._error("the inner system was not initialised (see the messages before)")
             return False
-        bad = next((n for n in self._input_names
-                    if isinstance(self.values[n], float) and not math.isfinite(self.values[n])), None)
-        if bad is not None:
-            self._error(f"input {bad} must be finite, got {self.values[bad]!r}")
-            return False
+        held = [self.values[n] for n in self._input_names]
+        if held != self._held:  # (a NaN never equals itself: always checked)
+            bad = next((n for n, x in zip(self._input_names, held)
+                        if isinstance(x, float) and not math.isfinite(x)), None)
+            if bad is not None:
+                self._error(f"input {bad} must be finite, got {self.values[bad]!r}")
+                return False
         if not (math.isfinite(step_size) and step_size > 0.0):
             self._error(f"communication step size must be > 0, got {step_size}")
             return False
-        return self._guarded(lambda: self._advance(current_time + step_size))
+        return self._guarded(lambda: self._advance(held, current_time + step_size))
 
-    def _advance(self, until: float) -> None:
-        """Hold the inputs as set (written to the inner instances where they changed) and step
+    def _advance(self, held: list, until: float) -> None:
+        """Hold the inputs at ``held`` (written to the inner instances if they changed) and step
         the system to ``until`` [s]."""
-        held = [self.values[n] for n in self._input_names]
         if held != self._held:
             if self._write is None:
                 self._write = self._writers()
