@@ -230,6 +230,7 @@ def test_convergence_stabilised_error_falls_with_the_step(tmp_path, fmu_dir):
     assert 2.5 < err[4e-6] / err[2e-6] < 6.0
 
 
+@pytest.mark.slow
 def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_2_5x(fmu_dir):
     # Soleimanian et al. (2020), 9000 N at 2500 Hz under the light reading (the rows lift off
     # every cycle), 10 ms at the scenario's 2 us, against the monolithic SciPy reference: the

@@ -264,6 +264,7 @@ def test_delay_beside_another_effect_is_found_to_the_sample_hand_value(tmp_path,
     assert named.effect == effect
 
 
+@pytest.mark.slow
 def test_delay_left_open_by_the_search_is_kept_where_the_best_model_fits_better(tmp_path):
     # the second generator's drive record of seed 97001 (development): ball-to-ball contact and
     # the force one sample (3.09 ms) behind the motion. The shift cuts the free model's mean
@@ -307,6 +308,7 @@ def test_no_delay_is_taken_from_a_record_without_one(tmp_path):
     assert named.run.channel_delay == 0.0 and named.effect == "presliding_hysteresis"
 
 
+@pytest.mark.slow
 def test_bursty_timestamps_are_clustered_not_refused(tmp_path):
     # every fifth sample has a twin 0.2 us later (a burst) with its own sensor noise: the
     # derivatives on a spline through such pairs would ring; the record is named as before
@@ -393,6 +395,7 @@ def test_peak_frequency_between_bins_is_refined_within_a_twentieth_of_a_bin_hand
     assert found and abs(found[0] - 3.2137) < 0.05 / 9.7
 
 
+@pytest.mark.slow
 def test_periodic_force_at_a_frequency_between_bins_is_unknown_with_its_sinusoid(tmp_path):
     # out of vocabulary: a force at 3.2137 Hz in time (a pump on the frame), 5 noise RMS. The
     # foreign law's sinusoid, at the refined frequency, explains it

@@ -128,6 +128,7 @@ def test_the_record_starts_at_rest_in_static_equilibrium_with_a_steady_film():
     assert np.ptp(states[0]) < 1e-6 * GUIDE.preload_approach
 
 
+@pytest.mark.slow
 def test_integration_error_is_far_below_the_finest_noise(tmp_path):
     """Tolerance: the record's integration (RTOL) differs from one 100 times tighter by far
     less than FINEST_NOISE of the channel's range, for the film plant (the hardest)."""

@@ -102,6 +102,7 @@ def test_vertical_workflow_names_the_hidden_effect_of_first_generator_records(
     assert (tmp_path / "out" / "spectra.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("contact", ["dry_hertz", "ehl"])
 def test_fused_vertical_model_matches_generic_monolithic_reference(tmp_path, record, fmu_dir,
                                                                   contact):

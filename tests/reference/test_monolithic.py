@@ -254,6 +254,7 @@ def test_verify_covers_the_diagnosers_rigs_cross_tool(fmu_dir, tmp_path, fmu, pa
     assert report["rms_error"]["Rig.drive_force"] < 1e-8, report
 
 
+@pytest.mark.slow
 def test_verify_covers_the_ball_carriage_scenario_cross_tool(fmu_dir, tmp_path):
     # the shipped scenario over its first 20 ms (the feed starts at 10 ms): co-simulation with
     # RK4 substeps and held inputs against LSODA on the same model; u and phi stay at round-off

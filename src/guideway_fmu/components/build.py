@@ -13,9 +13,11 @@ from __future__ import annotations
 
 import hashlib
 import modulefinder
+import re
 import shutil
 import sys
 import tempfile
+import zipfile
 from pathlib import Path
 
 import pythonfmu
@@ -127,13 +129,38 @@ def _finish(fmu: Path, package: str) -> Path:
 
 
 def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:
-    """Build the FMUs among ``names`` (default: all) that ``out_dir`` lacks; returns out_dir."""
+    """Build the FMUs among ``names`` (default: all) that ``out_dir`` lacks or holds built from
+    other code than this package's (their slave script's hash differs: the package changed since
+    they were built); an FMU of that name that this build did not make (a user's replacement) is
+    left alone. Returns out_dir."""
     out_dir = Path(out_dir)
     wanted = registry.names() if names is None else list(dict.fromkeys(names))
-    missing = [n for n in wanted if not (out_dir / f"{n}.fmu").is_file()]
-    if missing:
-        build(out_dir, missing)
+    stale = [n for n in wanted if built_tag(out_dir / f"{n}.fmu") not in (
+        code_hash(shipped_files(registry.component(n))), FOREIGN)]
+    for name in stale:
+        if (out_dir / f"{name}.fmu").is_file():
+            print(f"rebuilding {out_dir / name}.fmu: it was built from other code than this "
+                  "package's", file=sys.stderr)
+    if stale:
+        build(out_dir, stale)
     return out_dir
+
+
+FOREIGN = "foreign"  # built_tag of an FMU this build did not make
+
+
+def built_tag(fmu: Path) -> str | None:
+    """The code hash an FMU of this build carries (its slave script ``resources/<name>_<hash>.py``),
+    None when the file is missing, FOREIGN when it is an FMU of another origin."""
+    if not fmu.is_file():
+        return None
+    script = re.compile(rf"resources/{re.escape(fmu.stem)}_([0-9a-f]{{10}})\.py")
+    try:
+        with zipfile.ZipFile(fmu) as archive:
+            tags = [m.group(1) for m in map(script.fullmatch, archive.namelist()) if m]
+    except zipfile.BadZipFile:
+        return FOREIGN
+    return tags[0] if len(tags) == 1 else FOREIGN
 
 
 def write_readme(out_dir: Path, fmus: list[Path]) -> Path:
