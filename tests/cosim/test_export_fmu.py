@@ -273,3 +273,26 @@ def test_an_fmu_stepped_before_its_inner_system_initialised_discards_with_a_mess
     fmu.freeInstance()
     err = capfd.readouterr().err
     assert "[experiment] key 'step'" in err and "was not initialised" in err
+
+
+def test_two_packed_fmus_and_two_instances_of_one_run_side_by_side_as_each_alone(
+        packed, fmu_dir, tmp_path):
+    """Module names are process-wide: the packed FMUs of two scenarios, one of them twice, in
+    one run of our master give each instance's solo run bit for bit."""
+    unloaded = system.load(scenarios.find("soleimanian2020_unloaded"), fmu_dir)
+    other = export_fmu(unloaded, tmp_path / "Unloaded.fmu")
+    watched = ["Carriage.y", "Contact.F_upper"]
+
+    def run(instances):
+        b = system.Builder("side_by_side").experiment(stop=100 * STEP, step=STEP)
+        for name, fmu in instances.items():
+            b.component(name, fmu)
+        return master.simulate(b.record([f"{n}.{w}" for n in instances for w in watched])
+                               .system()).recording.columns
+
+    together = run({"A": packed, "B": other, "C": packed})
+    for name, fmu in (("A", packed), ("B", other), ("C", packed)):
+        alone = run({name: fmu})
+        for w in watched:
+            np.testing.assert_array_equal(together[f"{name}.{w}"], alone[f"{name}.{w}"])
+    assert not np.array_equal(together["A.Contact.F_upper"], together["B.Contact.F_upper"])
