@@ -296,3 +296,17 @@ def test_two_packed_fmus_and_two_instances_of_one_run_side_by_side_as_each_alone
         for w in watched:
             np.testing.assert_array_equal(together[f"{name}.{w}"], alone[f"{name}.{w}"])
     assert not np.array_equal(together["A.Contact.F_upper"], together["B.Contact.F_upper"])
+
+
+def test_parameters_set_on_the_packed_fmu_reach_its_inner_fmus(scenario, packed):
+    """A Real and a String parameter changed on the packed FMU: the run equals the unpacked
+    scenario with the same changes, bit for bit."""
+    changes = {"Carriage": {"load_amplitude": 3000.0}, "Feed": {"profile": "constant"}}
+    unpacked = master.simulate(scenario.with_changes(parameters=changes, stop=100 * STEP))
+    b = system.Builder("changed").experiment(stop=100 * STEP, step=STEP)
+    b.component("Rig", packed, **{f"{i}.{k}": v for i, ps in changes.items() for k, v in ps.items()})
+    result = master.simulate(b.record([f"Rig.{w}" for w in WATCHED]).system())
+    for name in WATCHED:
+        np.testing.assert_array_equal(result.recording.columns[f"Rig.{name}"],
+                                      unpacked.recording.columns[name])
+    assert result.parameters["Rig"]["Feed.profile"] == "constant"
