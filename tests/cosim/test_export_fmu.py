@@ -182,8 +182,9 @@ def test_a_non_finite_input_and_a_bad_parameter_discard_the_step_with_a_message(
         assert name in capfd.readouterr().err
 
 
-def test_inner_fmus_are_extracted_at_instantiation_and_removed_at_terminate(packed, tmp_path,
-                                                                            monkeypatch):
+@pytest.mark.parametrize("terminate", [True, False])
+def test_inner_fmus_are_extracted_at_instantiation_and_removed_at_terminate_or_free(
+        packed, tmp_path, monkeypatch, terminate):
     import tempfile
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
     (tmp_path / "tmp").mkdir()
@@ -197,9 +198,11 @@ def test_inner_fmus_are_extracted_at_instantiation_and_removed_at_terminate(pack
     fmu.enterInitializationMode()
     fmu.exitInitializationMode()
     fmu.doStep(0.0, STEP)
-    fmu.terminate()
-    assert list((tmp_path / "tmp").glob("guideway-fmu-*")) == []
+    if terminate:
+        fmu.terminate()
+        assert list((tmp_path / "tmp").glob("guideway-fmu-*")) == []
     fmu.freeInstance()
+    assert list((tmp_path / "tmp").glob("guideway-fmu-*")) == []
 
 
 @pytest.mark.parametrize("out, message", [

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import re
 import sys
+import weakref
 from pathlib import Path
 from xml.etree.ElementTree import Element, SubElement
 
@@ -127,11 +128,14 @@ class PackedSystem(Fmi2Slave):
                     else Fmi2Variability.discrete})
         if v.causality == "output":
             options["initial"] = Fmi2Initial.calculated
-        getter = ((lambda: self._output(key[0], name)) if v.causality == "output"
-                  else lambda: self.values[name])
+        # no reference to self (a cycle would keep the instance, and its inner instances, alive
+        # after fmi2FreeInstance until a garbage collection)
+        me, values = weakref.ref(self), self.values
+        getter = ((lambda: me()._output(key[0], name)) if v.causality == "output"
+                  else lambda: values[name])
         self.register_variable(_TYPES[v.type](
             name, causality=causality, description=v.description, getter=getter,
-            setter=None if v.causality == "output" else lambda x: self.values.__setitem__(name, x),
+            setter=None if v.causality == "output" else lambda x: values.__setitem__(name, x),
             **options))
         if v.type == "Real" and v.unit:
             self.units[name] = v.unit
@@ -241,7 +245,7 @@ class PackedSystem(Fmi2Slave):
             self.execution = None
             self._stale.clear()  # the outputs keep their last values
 
-    def __del__(self):  # fmi2FreeInstance without fmi2Terminate
+    def __del__(self):  # fmi2FreeInstance without fmi2Terminate (pythonfmu releases the instance)
         self.close()
 
     # -- modelDescription -------------------------------------------------------------------
