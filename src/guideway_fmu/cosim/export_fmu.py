@@ -10,6 +10,8 @@ import shutil
 import tempfile
 from pathlib import Path
 
+from fmpy import read_model_description
+
 from ..components import build
 from .packed_fmu import DATA, SCENARIO, PackedSystem
 from .ssp import packed_files
@@ -31,4 +33,7 @@ def export_fmu(system: System, out: str | Path) -> Path:
         inner = system.with_changes(fmus={n: tmp / c.fmu.name for n, c in system.components.items()})
         dump(inner, tmp / SCENARIO, f"The system packed into {out.name}; its FMUs beside this file")
         data = {f"{DATA}/{name}": tmp / name for name in [*sources, SCENARIO]}
-        return build.pack([(PackedSystem, out)], data, handle_state=False)[0]
+        # its state is its inner instances' states: it can get and set it if they all can
+        state = all(read_model_description(str(path)).coSimulation.canGetAndSetFMUstate
+                    for path in sources.values())
+        return build.pack([(PackedSystem, out)], data, handle_state=state)[0]

@@ -18,7 +18,9 @@ while our master (master.Execution: the scenario's algorithm, step and step-size
 the system to t + H, ending its last inner step there; terminate (or freeing the instance)
 terminates and frees the inner instances and deletes their folders. A non-finite input, an inner
 FMU that fails or refuses a parameter: fmi2Discard with a logged message naming it (pythonfmu
-can return no other failure status without ending the process's instances).
+can return no other failure status without ending the process's instances). Its FMU state
+(:class:`Snapshot`) holds its inner instances' states: it can get and set it where they all can
+(export_fmu.py declares it so).
 """
 from __future__ import annotations
 
@@ -248,6 +250,13 @@ class PackedSystem(Fmi2Slave):
     def __del__(self):  # fmi2FreeInstance without fmi2Terminate (pythonfmu releases the instance)
         self.close()
 
+    # -- FMU state ----------------------------------------------------------------------------
+    def _get_fmu_state(self) -> "Snapshot":
+        return Snapshot(self)
+
+    def _set_fmu_state(self, state: "Snapshot") -> None:
+        state.restore(self)
+
     # -- modelDescription -------------------------------------------------------------------
     def to_xml(self, model_options=dict()) -> Element:
         root = super().to_xml(model_options)
@@ -270,3 +279,35 @@ class PackedSystem(Fmi2Slave):
                 SubElement(node, "Unknown", index=str(index[f"{inst}.{var}"]),
                            **({"dependencies": ""} if section == "Outputs" else {}))
         return root
+
+
+class Snapshot:
+    """The state of a packed FMU instance (fmi2GetFMUstate): its inner instances' FMU states
+    (once initialised), where its master is, its variables and the inputs last written. pythonfmu
+    releases it at fmi2FreeFMUstate, which frees the inner states (unless the instance is gone,
+    and its inner instances with them)."""
+
+    def __init__(self, packed: PackedSystem):
+        execution = packed.execution
+        self.owner, self.execution = weakref.ref(packed), execution
+        self.inner = execution.bus.save() if packed._ready else None
+        self.t, self.h = (execution.t, execution.h) if execution is not None else (None, None)
+        self.values, self.held, self.stale = dict(packed.values), list(packed._held), set(packed._stale)
+
+    def restore(self, packed: PackedSystem) -> None:
+        """Put ``packed`` back into this state (logged error if it is another instance's)."""
+        execution = packed.execution
+        if execution is not self.execution or (self.inner is None) == packed._ready:
+            packed._error("fmi2SetFMUstate: the state is not one of this instance in its "
+                          "present mode; nothing restored")
+            return
+        if self.inner is not None:
+            execution.bus.restore(self.inner)
+            execution.t, execution.h = self.t, self.h
+        packed.values.update(self.values)
+        packed._held, packed._stale = list(self.held), set(self.stale)
+
+    def __del__(self):
+        packed = self.owner()
+        if self.inner is not None and packed is not None and packed.execution is self.execution:
+            self.execution.bus.free(self.inner)
