@@ -210,7 +210,8 @@ def write_page(args, scenario, reference, rows, ratios) -> None:
         "FMU that refuses a parameter or fails a step: `fmi2Discard` with a logged message naming "
         "it. The FMU runs in the host's Python like every FMU of this project (a C host needs the "
         "environment `guideway-fmu host-env` prints; `guideway-fmu host-env --check OUT.fmu` "
-        "tries it). It gets and sets its state (its inner FMUs' states, where the master is) when every inner FMU can.", "",
+        "tries it). It gets and sets its state (its inner FMUs' states, where the master is) "
+        "when every inner FMU can.", "",
         "When its communication points fall on the inner steps it makes exactly the FMI calls the "
         "unpacked system makes: `tests/cosim/test_export_fmu.py` wires an FMU written in C (a "
         "harmonic force) to `Carriage.F_ext` of the packed FMU and of the unpacked system and "

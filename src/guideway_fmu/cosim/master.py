@@ -3,8 +3,8 @@
 ``simulate(system)`` is the whole run; :class:`Execution` steps a system on demand
 (instantiate, initialise, advance to a time, close): the one stepping loop, behind ``simulate``
 and the packed FMU of a whole system (packed_fmu.py). The pieces follow libcosim's split: the
-:class:`Bus` moves values between instances (execution), algorithms.py decides how steps are taken, and
-observers (observers.py: the recorder, the progress bar, any the caller adds) are notified at
+:class:`Bus` moves values between instances (execution), algorithms.py decides how steps are
+taken, and observers (observers.py: the recorder, the progress bar, any the caller adds) are notified at
 the start, after every accepted step and at the end. The master talks to FMUs only through FMI (fmpy), so it runs
 FMUs this project did not build (Real, Integer, Boolean and Enumeration connections).
 """
