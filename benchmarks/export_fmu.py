@@ -135,7 +135,8 @@ def main() -> None:
         return rec.time, rec.columns[column]
 
     def in_fmpy(fmu, h):
-        res = fmpy.simulate_fmu(str(fmu), stop_time=args.stop, step_size=h, output=[SIGNAL])
+        res = fmpy.simulate_fmu(str(fmu), stop_time=args.stop, step_size=h, output_interval=h,
+                                output=[SIGNAL])  # fmpy communicates every output_interval
         return res["time"], res[SIGNAL]
 
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_export_bench_") as tmp:
