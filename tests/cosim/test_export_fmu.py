@@ -14,6 +14,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 import tomllib
 import zipfile
 from pathlib import Path
@@ -64,9 +65,7 @@ def packed(scenario, tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def force(tmp_path_factory):
-    if COMPILER is None:
-        pytest.skip("no C compiler (cc or gcc) for HarmonicForce")
+def force(tmp_path_factory):  # the tests that use it are marked needs_cc
     return compile_harmonic_force(tmp_path_factory.mktemp("harmonic_force"))
 
 
@@ -82,9 +81,9 @@ def unpacked_with_force(scenario, force: Path, folder: Path) -> system.System:
     return system.load(folder / "unpacked.toml")
 
 
-def packed_with_force(packed: Path, force: Path, step: float = STEP,
-                      algorithm: str = "gauss-seidel") -> system.System:
-    b = system.Builder("packed").experiment(stop=STOP, step=step, algorithm=algorithm)
+def packed_with_force(packed: Path, force: Path, algorithm: str = "gauss-seidel") -> system.System:
+    """HarmonicForce's F on the packed FMU's Carriage.F_ext, communicating every STEP for STOP."""
+    b = system.Builder("packed").experiment(stop=STOP, step=STEP, algorithm=algorithm)
     b.component("Force", force).component("Rig", packed).connect("Force.F", "Rig.Carriage.F_ext")
     return b.record([f"Rig.{w}" for w in WATCHED]).system()
 
@@ -138,7 +137,6 @@ def test_a_communication_step_of_ten_inner_steps_gives_the_same_trajectory(scena
                                    atol=1e-12 * np.abs(runs[0][name]).max())
 
 
-
 def test_a_communication_step_of_half_an_inner_step_halves_the_inner_steps(packed):
     """The inner master ends its steps at the communication points: at STEP / 2 it takes steps
     of STEP / 2, a run as accurate as at STEP (against each other: 1e-3 of the load's range,
@@ -149,6 +147,7 @@ def test_a_communication_step_of_half_an_inner_step_halves_the_inner_steps(packe
     load, halved = runs[0]["Contact.F_upper"], runs[1]["Contact.F_upper"][::2]
     assert not np.array_equal(halved, load)
     np.testing.assert_allclose(halved, load, atol=1e-3 * np.ptp(load))
+
 
 @needs_cc
 @pytest.mark.slow
@@ -197,7 +196,6 @@ def test_a_non_finite_input_and_a_bad_parameter_discard_the_step_with_a_message(
 @pytest.mark.parametrize("terminate", [True, False])
 def test_inner_fmus_are_extracted_at_instantiation_and_removed_at_terminate_or_free(
         packed, tmp_path, monkeypatch, terminate):
-    import tempfile
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
     (tmp_path / "tmp").mkdir()
     md = fmpy.read_model_description(str(packed))
