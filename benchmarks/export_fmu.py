@@ -236,9 +236,10 @@ def write_page(args, scenario, reference, rows, ratios) -> None:
         "host's doStep and its reads of the outputs) on top of the inner master's own work: "
         "about 20 us against the 80-90 us of one stabilised step of this system. A host that "
         "communicates every inner step pays it every step (in our master, whose own calls go "
-        "through fmpy's wrappers, that approaches or passes the 1.2 target on a busy machine); "
-        "a communication step of several inner steps makes it vanish. The machine runs other "
-        "jobs: the ratios move by about 0.1 from run to run.", "",
+        "through fmpy's wrappers, that approaches the 1.2 target), one that communicates every "
+        "few inner steps once per communication step. The machine runs other jobs: the ratios "
+        "move by about 0.1 from run to run (1.06 to 1.41 at one inner step per communication "
+        "step in our master over five runs of this script).", "",
         "## fmpy's container FMU", "",
         "fmpy 0.3.32 packs FMUs into one FMU too (`fmpy.container_fmu`): a compiled container "
         "that steps every inner FMU at one fixed step with its inputs held, connections copied "
