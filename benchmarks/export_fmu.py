@@ -238,8 +238,9 @@ def write_page(args, scenario, reference, rows, ratios) -> None:
         "communicates every inner step pays it every step (in our master, whose own calls go "
         "through fmpy's wrappers, that approaches the 1.2 target), one that communicates every "
         "few inner steps once per communication step. The machine runs other jobs: the ratios "
-        "move by about 0.1 from run to run (1.06 to 1.41 at one inner step per communication "
-        "step in our master over five runs of this script).", "",
+        "move from run to run (1.06 to 1.40 at one inner step per communication step in our "
+        "master over the last four runs of this script, with small changes of the packed FMU "
+        "between them).", "",
         "## fmpy's container FMU", "",
         "fmpy 0.3.32 packs FMUs into one FMU too (`fmpy.container_fmu`): a compiled container "
         "that steps every inner FMU at one fixed step with its inputs held, connections copied "
