@@ -169,12 +169,13 @@ def test_libcosim_and_fmpy_run_the_packed_fmu_next_to_the_c_fmu_as_our_jacobi_ma
                                    atol=1e-11 * scale)
 
 
-def test_a_non_finite_input_and_a_bad_parameter_discard_the_step_with_a_message(packed, tmp_path,
-                                                                                capfd):
+def test_a_non_finite_input_a_bad_parameter_and_a_step_from_elsewhere_discard_with_a_message(
+        packed, tmp_path, capfd):
     md = fmpy.read_model_description(str(packed))
     vr = {v.name: v.valueReference for v in md.modelVariables}
     fmpy.extract(str(packed), str(tmp_path))
-    for name, value, when in (("Carriage.F_ext", math.nan, "step"), ("Carriage.mass", -1.0, "init")):
+    for name, value, when in (("Carriage.F_ext", math.nan, "step"), ("Carriage.mass", -1.0, "init"),
+                              ("a step from t = 0.001 s", 0.001, "time")):
         fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(tmp_path),
                         modelIdentifier=md.coSimulation.modelIdentifier, instanceName="rig")
         fmu.instantiate()
@@ -186,7 +187,7 @@ def test_a_non_finite_input_and_a_bad_parameter_discard_the_step_with_a_message(
         if when == "step":
             fmu.setReal([vr[name]], [value])
         with pytest.raises(FMICallException) as failed:
-            fmu.doStep(0.0, STEP)
+            fmu.doStep(value if when == "time" else 0.0, STEP)
         assert failed.value.status == 2  # fmi2Discard
         fmu.terminate()
         fmu.freeInstance()

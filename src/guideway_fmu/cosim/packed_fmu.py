@@ -38,6 +38,7 @@ from ..components.runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi
                                   Fmi2Slave, Fmi2Status, Fmi2Variability, Integer, Real, String)
 from .algorithms import ALGORITHMS
 from .interrupts import StopRequests
+from .fmu_instance import FATAL
 from .master import Execution, Result, SimulationError, by_type, failure
 from .recording import Recording
 from .ssp import base_units
@@ -174,7 +175,12 @@ class PackedSystem(Fmi2Slave):
 
     def do_step(self, current_time: float, step_size: float) -> bool:
         if not self._ready:
-            self._error("the inner system was not initialised (see the messages before)")
+            self._error("the inner system was not initialised, or an inner FMU failed fatally "
+                        "(see the messages before)")
+            return False
+        at = self.execution.t
+        if abs(current_time - at) > 1e-9 * self.system.experiment.step:
+            self._error(f"a step from t = {current_time!r} s, but the system is at t = {at!r} s")
             return False
         held = [self.values[n] for n in self._input_names]
         if held != self._held:  # (a NaN never equals itself: always checked)
@@ -227,6 +233,8 @@ class PackedSystem(Fmi2Slave):
             return True
         except FMICallException as exc:
             self._error(failure(self.system.name, self.execution.instances, exc))
+            if exc.status == FATAL:  # no further call into the inner instances
+                self._ready = False
         except (SimulationError, ValueError, KeyError, TypeError) as exc:
             self._error(str(exc))
         return False
