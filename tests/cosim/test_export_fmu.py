@@ -286,7 +286,7 @@ def test_an_fmu_stepped_before_its_inner_system_initialised_discards_with_a_mess
     fmu.terminate()
     fmu.freeInstance()
     err = capfd.readouterr().err
-    assert "[experiment] key 'step'" in err and "was not initialised" in err
+    assert "[experiment] key 'step'" in err and "is not initialised" in err
 
 
 def test_two_packed_fmus_and_two_instances_of_one_run_side_by_side_as_each_alone(

@@ -175,8 +175,8 @@ class PackedSystem(Fmi2Slave):
 
     def do_step(self, current_time: float, step_size: float) -> bool:
         if not self._ready:
-            self._error("the inner system was not initialised, or an inner FMU failed fatally "
-                        "(see the messages before)")
+            self._error("the inner system is not initialised, failed fatally or was "
+                        "terminated (see the messages before)")
             return False
         at = self.execution.t
         if abs(current_time - at) > 1e-9 * self.system.experiment.step:
@@ -253,6 +253,7 @@ class PackedSystem(Fmi2Slave):
         if getattr(self, "execution", None) is not None:  # None: __init__ failed or closed
             self.execution.close()
             self.execution = None
+            self._ready = False
             self._stale.clear()  # the outputs keep their last values
 
     def __del__(self):  # fmi2FreeInstance without fmi2Terminate (pythonfmu releases the instance)
