@@ -355,3 +355,14 @@ def test_the_packed_fmu_gets_and_sets_its_state_as_its_inner_fmus_do(packed, tmp
     steps(20 * STEP, 5)
     fmu.terminate()
     fmu.freeInstance()
+
+
+def test_a_scenario_exports_again_after_its_packed_fmu_ran_in_this_process(scenario, packed,
+                                                                          tmp_path):
+    """The packed FMU's modules (same code hash) are loaded here by the tests before; the build
+    must import its own copy, not those (pythonfmu's builder found no slave class then)."""
+    fmpy.simulate_fmu(str(packed), stop_time=STEP, step_size=STEP)
+    again = export_fmu(scenario, tmp_path / packed.name)  # the name is in its scenario's header
+    assert validate_fmu(str(again)) == []
+    with zipfile.ZipFile(packed) as a, zipfile.ZipFile(again) as b:
+        assert sorted(a.namelist()) == sorted(b.namelist())  # the same package name: same code

@@ -93,6 +93,7 @@ def pack(slaves: list[tuple[type, Path]], data: dict[str, Path] | None = None,
                 files = shipped_files(cls)
                 tag = code_hash(files, data)
                 tags.append(tag)
+                _forget([tag])  # an FMU of this code loaded in this process: import the copy
                 package = tmp / f"guideway_fmu_{name}_{tag}"
                 copies = {path.relative_to(PACKAGE_DIR): path for path in files}
                 copies.update({Path(entry): path for entry, path in (data or {}).items()})
@@ -109,9 +110,15 @@ def pack(slaves: list[tuple[type, Path]], data: dict[str, Path] | None = None,
                 built.append(_finish(Path(fmu), package.name))
         finally:
             sys.path.remove(str(tmp))
-            for module in [m for m in sys.modules if any(tag in m for tag in tags)]:
-                del sys.modules[module]
+            _forget(tags)
     return built
+
+
+def _forget(tags: list[str]) -> None:
+    """Drop the modules of the packages and slave scripts with these code hashes from
+    ``sys.modules`` (an FMU instance keeps its own; its next instantiation imports them anew)."""
+    for module in [m for m in sys.modules if any(tag in m for tag in tags)]:
+        del sys.modules[module]
 
 
 def _finish(fmu: Path, package: str) -> Path:
