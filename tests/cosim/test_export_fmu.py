@@ -150,7 +150,6 @@ def test_a_communication_step_of_half_an_inner_step_halves_the_inner_steps(packe
 
 
 @needs_cc
-@pytest.mark.slow
 def test_libcosim_and_fmpy_run_the_packed_fmu_next_to_the_c_fmu_as_our_jacobi_master_does(
         packed, force, tmp_path):
     """Through an SSP package of [HarmonicForce, packed FMU]: libcosim to round-off (its clock
