@@ -45,6 +45,8 @@ from .ssp import base_units
 from .system import load
 
 DATA = "packed"  # the package's folder holding the scenario and its FMUs
+#: never entered, so no signal stops the inner master: the host's signals are the host's
+NEVER = StopRequests()
 SCENARIO = "system.toml"
 _TYPES = {"Real": Real, "Integer": Integer, "Enumeration": Integer, "Boolean": Boolean,
           "String": String}
@@ -117,7 +119,7 @@ class PackedSystem(Fmi2Slave):
             result = Result(self.system.name, exp.algorithm, Recording(np.array([]), {}, {}), {})
             self.execution = Execution(self.system, result, set(self.outputs))
             try:
-                self.execution.instantiate(StopRequests())
+                self.execution.instantiate(NEVER)
             except SimulationError:
                 self.close()  # the instances made so far; pythonfmu then reports no instance
                 raise
@@ -163,7 +165,7 @@ class PackedSystem(Fmi2Slave):
             value = self.values[f"{inst}.{var}"]
             if value is not None:
                 given.setdefault(inst, {})[var] = value
-        self.execution.initialise(StopRequests(), given)
+        self.execution.initialise(NEVER, given)
         self._held = [given.get(i, {}).get(v) for i, v in self.inputs]
 
     def _writers(self) -> list:
@@ -203,7 +205,7 @@ class PackedSystem(Fmi2Slave):
             for write, names in self._write:
                 write([self.values[n] for n in names])
             self._held = held
-        self.execution.advance(until, StopRequests())
+        self.execution.advance(until, NEVER)
 
     def _output(self, inst: str, name: str):
         """An output's value, the outputs of its instance read from it first if it stepped
