@@ -62,6 +62,7 @@ class GuidewaySlave(Fmi2Slave):
         self._outputs: dict[str, float] | None = None
         self._last_valid: dict[str, float] = {}
         self._model = None
+        self._inputs_checked = False  # since the last input or parameter was set
         self._initialising = False
         self._described = _described_starts(self.resources)
 
@@ -116,6 +117,7 @@ class GuidewaySlave(Fmi2Slave):
     def _set(self, name, value, parameter=False):
         setattr(self, name, value)
         self._outputs = None
+        self._inputs_checked = False
         if parameter:
             self._model = None
 
@@ -168,7 +170,9 @@ class GuidewaySlave(Fmi2Slave):
     def _guarded(self, action):
         try:
             self.model()
-            self.check_inputs()
+            if not self._inputs_checked:  # once per set of inputs: a step and its outputs share it
+                self.check_inputs()
+                self._inputs_checked = True
             return action()
         except Exception as exc:  # noqa: BLE001 - an exception here would be fmi2Fatal
             self._error(str(exc))
@@ -204,7 +208,9 @@ class GuidewaySlave(Fmi2Slave):
             if self._initialising:  # the outputs as initialization will leave them
                 self._initialise_guarded()
             values = self._guarded(self.evaluate)
-            if values is not None and all(math.isfinite(v) for v in values.values()):
+            # a finite sum has finite terms; only an overflowing or non-finite one needs a look
+            if values is not None and (math.isfinite(sum(values.values()))
+                                       or all(math.isfinite(v) for v in values.values())):
                 self._last_valid = values
             elif values is not None:
                 bad = [k for k, v in values.items() if not math.isfinite(v)]
@@ -231,6 +237,7 @@ class GuidewaySlave(Fmi2Slave):
                 setattr(self, name, value)
         self._outputs = None
         self._model = None
+        self._inputs_checked = False
 
     # -- modelDescription ---------------------------------------------------------------
     def _variables_of(self, *causalities):
