@@ -49,7 +49,7 @@ at 2 us (1 us: 0.20 %). At 1 us that cycle costs about as much as its reference,
 the unloaded rig with its friction: both sit at the target, within the machine's noise.
 
 Where the ratio is the wrong yardstick. The dry scenarios: the coupling is exact and the
-reference integrates two smooth states with LSODA (about 1.1 s, 1.8-2.3 s with the outputs at
+reference integrates two smooth states with LSODA (1.1-1.7 s, 1.8-2.3 s with the outputs at
 50 001 times); the co-simulation cannot take fewer than one macro step per record point, and a
 step costs its 9 FMI calls, the carriage's four RK4 substeps and the master's bookkeeping, about
 50 us: 2.5 s over the cycle at the 4 us record interval. `zhang2019_feed_unit_milling` has no
