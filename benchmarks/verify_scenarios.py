@@ -97,8 +97,8 @@ def main() -> None:
         "of each state's nominal scale / at rtol 1e-9), the RMS error in % of its range of the "
         "stabilised master at each scenario's step against the reference (LSODA, or RK45 where a "
         "model is not smooth such as the lubricated contact; rtol 1e-10), the verdict by that "
-        "criterion, and both wall times [s] measured in the same run (the machine's load moves "
-        "them; their ratio less).", "", CRITERION, "",
+        "criterion, and both wall times [s] of the whole calls measured in the same run (the "
+        "machine's load moves them; their ratio less; [speed.md](speed.md) says where they go).", "", CRITERION, "",
         "| scenario | signal | step | criterion | spread | error [%] | verdict | co-simulation [s] "
         "| reference [s] | ratio |",
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |", *rows, "", NOTES]))

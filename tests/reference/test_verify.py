@@ -18,7 +18,7 @@ def test_dry_9000N_2500Hz_under_the_light_preload_is_judged_by_statistics(fmu_di
     # the run, their spread is too narrow a yardstick and the co-simulation fails on peaks 2-3
     light = {r.name: r for r in paper.readings()}["carriage"]
     rig = system.load(scenarios.find("soleimanian2020_9000N_2500Hz_dry"), fmu_dir).with_changes(
-        parameters=light.parameters())
+        step=2e-6, parameters=light.parameters())
     report = verify(rig)
     assert report["criterion"] == "statistics", report["predictability"]
     assert min(report["predictability"]["spread"].values()) > 0.1

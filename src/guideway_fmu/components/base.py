@@ -58,10 +58,13 @@ class GuidewaySlave(Fmi2Slave):
         self._units: dict[str, str] = {}
         self._non_negative: list[str] = []
         self._inputs: list[str] = []
+        self._input_refs: dict[int, str] = {}  # value reference -> name, Real inputs
+        self._output_refs: dict[int, str] = {}  # value reference -> name, outputs
         self._depends: dict[str, tuple[str, ...]] = {}
         self._outputs: dict[str, float] | None = None
         self._last_valid: dict[str, float] = {}
         self._model = None
+        self._inputs_checked = False  # since the last input or parameter was set
         self._initialising = False
         self._described = _described_starts(self.resources)
 
@@ -88,18 +91,22 @@ class GuidewaySlave(Fmi2Slave):
         self._inputs.append(name)
         if non_negative:
             self._non_negative.append(name)
-        self.register_variable(Real(
+        variable = Real(
             name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
             description=description, getter=lambda: getattr(self, name),
-            setter=lambda v: self._set(name, v)))
+            setter=lambda v: self._set(name, v))
+        self.register_variable(variable)
+        self._input_refs[variable.value_reference] = name
         self._units[name] = unit
 
     def output(self, name: str, unit: str, description: str, depends: tuple[str, ...] = ()) -> None:
         """An output computed by :meth:`evaluate`; ``depends`` names the inputs it feeds through."""
-        self.register_variable(Real(
+        variable = Real(
             name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
             initial=Fmi2Initial.calculated, description=description,
-            getter=lambda: self._output(name)))
+            getter=lambda: self._output(name))
+        self.register_variable(variable)
+        self._output_refs[variable.value_reference] = name
         self._units[name] = unit
         self._depends[name] = tuple(depends)
 
@@ -115,7 +122,12 @@ class GuidewaySlave(Fmi2Slave):
 
     def _set(self, name, value, parameter=False):
         setattr(self, name, value)
+        self._changed(parameter)
+
+    def _changed(self, parameter=False) -> None:
+        """Inputs (or a ``parameter``) were set: outputs, the input check (and the model) are stale."""
         self._outputs = None
+        self._inputs_checked = False
         if parameter:
             self._model = None
 
@@ -168,7 +180,9 @@ class GuidewaySlave(Fmi2Slave):
     def _guarded(self, action):
         try:
             self.model()
-            self.check_inputs()
+            if not self._inputs_checked:  # once per set of inputs: a step and its outputs share it
+                self.check_inputs()
+                self._inputs_checked = True
             return action()
         except Exception as exc:  # noqa: BLE001 - an exception here would be fmi2Fatal
             self._error(str(exc))
@@ -199,18 +213,44 @@ class GuidewaySlave(Fmi2Slave):
         self._outputs = None
         return bool(ok)
 
+    # pythonfmu's get_real and set_real, which its C side calls by name, pass each variable
+    # through its getter or setter; a batch of outputs alone (or of Real inputs alone), what a
+    # master exchanges every step, is served here from one evaluation (one invalidation).
+    def get_real(self, vrs):
+        try:
+            names = [self._output_refs[vr] for vr in vrs]
+        except KeyError:
+            return super().get_real(vrs)
+        values = self._evaluated()
+        return [float(values.get(name, 0.0)) for name in names]
+
+    def set_real(self, vrs, values):
+        try:
+            names = [self._input_refs[vr] for vr in vrs]
+        except KeyError:
+            return super().set_real(vrs, values)
+        for name, value in zip(names, values):
+            setattr(self, name, value)
+        self._changed()
+
     def _output(self, name: str) -> float:
+        return float(self._evaluated().get(name, 0.0))
+
+    def _evaluated(self) -> dict[str, float]:
+        """The outputs by name: evaluated from the present inputs, or the last valid ones."""
         if self._outputs is None:
             if self._initialising:  # the outputs as initialization will leave them
                 self._initialise_guarded()
             values = self._guarded(self.evaluate)
-            if values is not None and all(math.isfinite(v) for v in values.values()):
+            # a finite sum has finite terms; only an overflowing or non-finite one needs a look
+            if values is not None and (math.isfinite(sum(values.values()))
+                                       or all(math.isfinite(v) for v in values.values())):
                 self._last_valid = values
             elif values is not None:
                 bad = [k for k, v in values.items() if not math.isfinite(v)]
                 self._error(f"outputs {bad} are not finite; keeping the last valid values")
             self._outputs = self._last_valid
-        return float(self._outputs.get(name, 0.0))
+        return self._outputs
 
     # -- FMU state ----------------------------------------------------------------------
     def _get_fmu_state(self):
@@ -229,8 +269,7 @@ class GuidewaySlave(Fmi2Slave):
                 self._last_valid = dict(value)
             else:
                 setattr(self, name, value)
-        self._outputs = None
-        self._model = None
+        self._changed(parameter=True)
 
     # -- modelDescription ---------------------------------------------------------------
     def _variables_of(self, *causalities):

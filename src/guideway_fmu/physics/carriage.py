@@ -81,7 +81,12 @@ class CarriageModel(ContinuousModel):
 
     def acceleration(self, t: float, f_contact: float, f_ext: float) -> float:
         """y'' [m/s^2] of eq. 1b at the time t [s] under the contact force and F_ext [N]."""
-        return self.carriage.gravity + (self.load(t) + f_ext - f_contact) / self.carriage.mass
+        return self.loaded_acceleration(self.load(t), f_contact, f_ext)
+
+    def loaded_acceleration(self, f_load: float, f_contact: float, f_ext: float) -> float:
+        """y'' [m/s^2] of eq. 1b under the external load F_e [N] (its value at the instant),
+        the contact force and F_ext [N]."""
+        return self.carriage.gravity + (f_load + f_ext - f_contact) / self.carriage.mass
 
     def state_scales(self):
         return (LENGTH_SCALE, SPEED_SCALE)
@@ -111,34 +116,36 @@ class CarriageModel(ContinuousModel):
         if rows is None:
             y0, v0 = y, v
 
-            def contact(s, yy, vv):
+            def contact(tau, yy, vv):
                 return f_contact + k_contact * (yy - y0) + c_contact * (vv - v0)
 
             kk = k_contact / m
         else:
-            def contact(s, yy, vv):
-                return rows.force(yy, s - t) + c_contact * vv
+            force = rows.force
+
+            def contact(tau, yy, vv):
+                return force(yy, tau) + c_contact * vv
 
             kk = max(rows.stiffness(y, 0.0), rows.stiffness(y, h)) / m
 
-        def acc(s, yy, vv):
-            return self.acceleration(s, contact(s, yy, vv), f_ext)
-
+        accelerate, load = self.loaded_acceleration, self.load
         omega = max(math.sqrt(kk), c_contact / m, 2.0 * math.pi * self.load.frequency)
         n = substeps(h * omega / SUBSTEP_PHASE, "the body's motion (omega h <= SUBSTEP_PHASE)")
         dt = h / n
+        f_end = load(t)  # F_e at the substep's end, the next one's start: evaluated once
         for i in range(n):
-            s = t + i * dt
-            a1 = acc(s, y, v)
+            tau = i * dt
+            f_start, f_mid, f_end = f_end, load(t + tau + 0.5 * dt), load(t + tau + dt)
+            a1 = accelerate(f_start, contact(tau, y, v), f_ext)
             y2, v2 = y + 0.5 * dt * v, v + 0.5 * dt * a1
-            a2 = acc(s + 0.5 * dt, y2, v2)
+            a2 = accelerate(f_mid, contact(tau + 0.5 * dt, y2, v2), f_ext)
             y3, v3 = y + 0.5 * dt * v2, v + 0.5 * dt * a2
-            a3 = acc(s + 0.5 * dt, y3, v3)
+            a3 = accelerate(f_mid, contact(tau + 0.5 * dt, y3, v3), f_ext)
             y4, v4 = y + dt * v3, v + dt * a3
-            a4 = acc(s + dt, y4, v4)
+            a4 = accelerate(f_end, contact(tau + dt, y4, v4), f_ext)
             y, v = (y + dt / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4),
                     v + dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4))
-        return y, v, acc(t + h, y, v)
+        return y, v, accelerate(f_end, contact(h, y, v), f_ext)
 
 
 def from_parameters(mass, gravity, load_static, load_amplitude, load_frequency, load_phase,

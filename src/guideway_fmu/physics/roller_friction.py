@@ -130,14 +130,14 @@ def mixed_ehl_friction(F_upper, F_lower, h_upper, h_lower, u, params: MixedFrict
     :func:`contact_friction`, summed over 2N upper and 2N lower contacts, are multiplied by
     -regularised_sign(u): each force opposes u. total = boundary + viscous.
     """
-    f_upper = checks.non_negative("F_upper", F_upper)
-    f_lower = checks.non_negative("F_lower", F_lower)
-    u = checks.finite("u", u)
-    b_upper, v_upper = _contact(f_upper, checks.finite("h_upper", h_upper), u, params)
-    b_lower, v_lower = _contact(f_lower, checks.finite("h_lower", h_lower), u, params)
+    f_upper, f_lower, h_upper, h_lower, u = np.broadcast_arrays(
+        checks.non_negative("F_upper", F_upper), checks.non_negative("F_lower", F_lower),
+        checks.finite("h_upper", h_upper), checks.finite("h_lower", h_lower), checks.finite("u", u))
+    # both rows in one evaluation, along a leading axis (the special functions cost per call)
+    b, v = _contact(np.stack([f_upper, f_lower]), np.stack([h_upper, h_lower]), u, params)
     scale = -2.0 * params.rollers_per_groove * regularised_sign(u, params.velocity_tolerance)
-    boundary = scale * (b_upper + b_lower)
-    viscous = scale * (v_upper + v_lower)
+    boundary = scale * (b[0] + b[1])
+    viscous = scale * (v[0] + v[1])
     return boundary + viscous, boundary, viscous
 
 

@@ -2,6 +2,8 @@
 a verdict by the criterion the reference's predictability allows (reference/criterion.py)."""
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from . import criterion, monolithic, statistics
@@ -68,7 +70,9 @@ def verify(system: System) -> dict:
     reference runs, disturbed); a system the reference cannot model is refused before the
     co-simulation runs."""
     monolithic.check(system)
+    start = time.perf_counter()
     result = master.simulate(system)
+    wall_time_cosim = time.perf_counter() - start  # s, the whole run, as the reference's
     rec = result.recording
     reference = monolithic.simulate(system, times=rec.time)
     rms, peak = compare(rec.time, rec.columns, reference)
@@ -97,7 +101,7 @@ def verify(system: System) -> dict:
         report["k"], report["floor"] = criterion.K, criterion.FLOOR
         report["passed"] = all(s["passed"] for sig in stats["signals"].values() for s in sig.values())
     report.update({
-        "wall_time_cosim": result.wall_time, "wall_time_reference": reference.wall_time,
+        "wall_time_cosim": wall_time_cosim, "wall_time_reference": reference.wall_time,
         "wall_time_probe": sum(d.wall_time for d in disturbed.values()),
         "fmi_call_time_cosim": result.fmi_time,
         "reference": {"method": reference.method, "rtol": reference.rtol, "nfev": reference.nfev}})
