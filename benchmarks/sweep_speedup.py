@@ -8,7 +8,7 @@ both wall times, the speed-up with and without the cluster's start, and whether 
 gave the same numbers, and writes them to docs/sweep-speedup.md. Needs two free cores to show
 what two workers can do.
 
-    python benchmarks/sweep_speedup.py [--stop 0.02] [--workers 2] [--fmus fmus] [--out docs/sweep-speedup.md]
+    python benchmarks/sweep_speedup.py [--stop 0.1] [--workers 2] [--fmus fmus] [--out docs/sweep-speedup.md]
 """
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ reduce = "envelope"
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--stop", type=float, default=0.02, help="simulated time per point [s]")
+    parser.add_argument("--stop", type=float, default=0.1, help="simulated time per point [s]")
     parser.add_argument("--workers", type=int, default=2, help="worker processes")
     parser.add_argument("--fmus", type=Path, default=Path("fmus"), help="FMU folder (built where missing)")
     parser.add_argument("--out", type=Path, default=Path("docs/sweep-speedup.md"), help="page written")
