@@ -165,21 +165,24 @@ class Stabilised(GaussSeidel):
         self.tolerance, self.min_step = exp.tolerance, exp.min_step
         self.max_step = exp.max_step if self.tangents else exp.step
         self.rollback = exp.tolerance > 0 and bus.can_roll_back()
+        self.differences = [tg.put_differences for tg in self.tangents if tg.differenced]
 
     def step(self, t: float, h: float):
+        if not self.rollback:  # no defect to measure: the slopes the FMUs lack, and the step
+            for put in self.differences:
+                put()
+            return super().step(t, h)
         bus = self.bus
-        saved = bus.save() if self.rollback else None
+        saved = bus.save()
         try:
             before = [tg.linearise() for tg in self.tangents]
             try:
                 super().step(t, h)
             except FMICallException as exc:
-                if saved is None or h <= self.min_step or exc.status == FATAL:
+                if h <= self.min_step or exc.status == FATAL:
                     raise
                 bus.restore(saved)
                 return False, max(DISCARD_SHRINK * h, self.min_step)
-            if saved is None:
-                return True, h
             ratio = max((tg.defect(*b) for tg, b in zip(self.tangents, before)), default=0.0)
             grow = (min(GROW_LIMIT, max(SHRINK_LIMIT, SAFETY * math.sqrt(self.tolerance / ratio)))
                     if ratio > 0 else GROW_LIMIT)
@@ -189,8 +192,7 @@ class Stabilised(GaussSeidel):
             bus.restore(saved)
             return False, next_h
         finally:
-            if saved is not None:
-                bus.free(saved)
+            bus.free(saved)
 
 
 def _slope_key(spec, output, input_name):
@@ -233,6 +235,7 @@ class Tangent:
         self.largest = 0.0  # largest |force| seen: the absolute scale of the defect
         self.k = self._slope(spec.stiffness, spec.position)
         self.c = self._slope(spec.damping, spec.velocity) if spec.velocity else None
+        self.differenced = self.k is not None or self.c is not None
 
     def _slope(self, output, input_name):
         """None for an FMU output (already on the bus), else the finite difference."""
@@ -254,13 +257,19 @@ class Tangent:
             return (f_plus - f_minus) / (2 * dx)
         return central_difference
 
-    def linearise(self):
-        """Put K, C on the bus for the consumer; returns what :meth:`defect` needs."""
+    def put_differences(self) -> None:
+        """Put the finite-difference K, C on the bus for the consumer (the FMU's own slopes are
+        there already)."""
         vals = self.bus.values
         if self.k is not None:
             vals[self.k_key] = self.k()
         if self.c is not None:
             vals[self.c_key] = self.c()
+
+    def linearise(self):
+        """Put K, C on the bus for the consumer; returns what :meth:`defect` needs."""
+        self.put_differences()
+        vals = self.bus.values
         k = vals[self.k_key]
         c = vals[self.c_key] if self.c_key else 0.0
         return (vals[self.force], k, c, vals[self.x] if self.x else 0.0,

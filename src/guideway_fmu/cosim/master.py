@@ -107,13 +107,23 @@ class Bus:
     def _read(self, groups) -> None:
         values = self.values
         for read, keys in groups:
-            for key, value in zip(keys, read()):
-                if value - value != 0:  # NaN or infinite (Strings are never exchanged)
-                    raise NonFiniteOutput(*key, value)
-                values[key] = value
+            new = read()
+            total = sum(new)
+            if total - total != 0:  # NaN or infinite among them (or a sum that overflowed)
+                for key, value in zip(keys, new):
+                    if value - value != 0:  # Strings are never read here
+                        raise NonFiniteOutput(*key, value)
+            values.update(zip(keys, new))
 
     def read_outputs(self, name: str) -> None:
-        self._read(self._reads[name])
+        """Read the exchanged variables of the instance ``name`` after its step; an
+        FMICallException raised here carries ``after_step`` = True (it concerns the values at
+        the step's end)."""
+        try:
+            self._read(self._reads[name])
+        except FMICallException as exc:
+            exc.after_step = True
+            raise
 
     def observe(self, name: str | None = None) -> None:
         """Read the observed-only variables of the instance ``name`` (default: of every one)."""
@@ -179,11 +189,15 @@ class Execution:
     """A system's FMUs instantiated (sources first), initialised, connected on a :class:`Bus` and
     stepped by the experiment's algorithm on demand: the one stepping loop, behind
     :func:`simulate` and the packed FMU (packed_fmu.py). ``observed``: further (instance,
-    variable) that :meth:`Bus.observe` reads; ``t`` [s] is where the instances are,
-    ``steps``/``rejected`` count into ``result``."""
+    variable) that :meth:`Bus.observe` reads, or, ``with_outputs``, that are read with the
+    exchanged outputs after every step (one FMI call fewer per instance and step where every step
+    is observed); ``t`` [s] is where the instances are, ``steps``/``rejected`` count into
+    ``result``."""
 
-    def __init__(self, system: System, result: Result, observed: set = frozenset()):
+    def __init__(self, system: System, result: Result, observed: set = frozenset(),
+                 with_outputs: bool = False):
         self.system, self.result, self.observed = system, result, set(observed)
+        self.with_outputs = with_outputs
         self.algorithm_class = ALGORITHMS[system.experiment.algorithm]
         self.instances: dict[str, FmuInstance] = {}
         self.bus: Bus | None = None
@@ -207,6 +221,8 @@ class Execution:
         system = self.system
         cls = self.algorithm_class
         exchanged = {(c.source, c.output) for c in system.connections} | cls.exchanged(system)
+        if self.with_outputs:
+            exchanged |= self.observed
         self.bus = Bus(system, self.instances, exchanged, self.observed, cls.links(system))
         settings = cls.settings(system)
         _initialise(system, self.bus, {n: {**(values or {}).get(n, {}), **settings.get(n, {})}
@@ -218,7 +234,7 @@ class Execution:
         that ends there to round-off taken as it is, ``t`` then set to ``until``), notifying
         ``watchers`` after every accepted step; inputs set from outside are held. An
         FMICallException leaves with ``time`` [s]: that of the values concerned (the end of the
-        step for a non-finite output, the step's start else)."""
+        step for an output read after it, the step's start else)."""
         exp, algorithm, bus, result = self.system.experiment, self.algorithm, self.bus, self.result
         eps = 1e-9 * exp.step
         t, h = self.t, self.h
@@ -229,7 +245,7 @@ class Execution:
                 try:
                     accepted, h_next = algorithm.step(t, h_try)
                 except FMICallException as exc:
-                    exc.time = t + h_try if isinstance(exc, NonFiniteOutput) else t
+                    exc.time = t + h_try if getattr(exc, "after_step", False) else t
                     raise
                 if not accepted:
                     result.rejected += 1
@@ -269,7 +285,8 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
                         {r: system.variable_description(*r.split(".", 1)) for r in record})
     watchers = [recorder, *([ProgressBar()] if progress else []), *observers]
     result = Result(system.name, exp.algorithm, Recording(*_empty(record)), {})
-    execution = Execution(system, result, {tuple(r.split(".", 1)) for r in record})
+    execution = Execution(system, result, {tuple(r.split(".", 1)) for r in record},
+                          with_outputs=exp.tolerance == 0 and system.record_interval <= exp.step)
     instances = execution.instances
 
     def expired(name: str, t: float) -> None:  # in the watchdog's thread; the process then ends
