@@ -220,14 +220,17 @@ def test_stability_stabilised_bounded_where_explicit_coupling_diverges(tmp_path,
 
 
 def test_convergence_stabilised_error_falls_with_the_step(tmp_path, fmu_dir):
-    # loaded: 3000 N at 4500 Hz; the error against a 0.25 us run falls like h^2 (ratio ~4)
+    # loaded: 3000 N at 4500 Hz; the error against a 0.25 us run falls like h^2 (16x from 4 us
+    # to 1 us; measured 17x). Over a halving the ratio wanders (6.6 from 4 to 2 us, 2.6 from 2
+    # to 1 us): the carriage's RK4 substeps (omega h <= 0.1) change in number with the step
+    # and their error partly cancels the coupling's.
     runs = {h: master.simulate(rig(tmp_path, fmu_dir, stop=1e-3, step=h, load=3000.0)).recording
-            for h in (4e-6, 2e-6, 2.5e-7)}
+            for h in (4e-6, 1e-6, 2.5e-7)}
     fine = runs[2.5e-7]
     err = {h: np.abs(runs[h].columns["Contact.F_upper"]
                      - np.interp(runs[h].time, fine.time, fine.columns["Contact.F_upper"])).max()
-           for h in (4e-6, 2e-6)}
-    assert 2.5 < err[4e-6] / err[2e-6] < 6.0
+           for h in (4e-6, 1e-6)}
+    assert 10.0 < err[4e-6] / err[1e-6] < 24.0
 
 
 @pytest.mark.slow
