@@ -28,21 +28,36 @@ from guideway_fmu.reference.verify import compare, judged_signals
 TARGET, STRETCH = 1.0, 0.5  # co-simulation over reference wall time
 NOTES = """\
 Where the co-simulation's time goes (the last columns; profiles of 0.01-0.02 s runs, cProfile
-and the time of each FMI call). A Soleimanian scenario makes 9 FMI calls a macro step: each
+and the time of each FMI call). A Soleimanian scenario makes 8 FMI calls a macro step: each
 instance's inputs (one batched call per instance and type; the feed has none), its doStep and
-its outputs (one batched call; the contact's recorded-only loads and films are read once more at
-each record point, here every step); `soleimanian2020_unloaded` adds the friction FMU's inputs,
-doStep and output. Through fmpy, ctypes and pythonfmu's passage into Python a call costs
-1.5-3 us before the component does anything. Inside: the carriage's RK4 substeps (omega h <=
-0.05, four in a 4 us step, about 2 us each), the contact's film integration (Heun substeps) and
-evaluation, the feed's two sines. The master's own part (bus, tangents, recording) is about
-10 us a step. The friction FMU feeds nothing back; it computes only when its recorded output is
-read, about 65 us an evaluation (parabolic-cylinder functions, both rows at once), at every 4 us
-record point, as the reference evaluates it at every recorded time: half of either run's time.
+its outputs (one batched call; where every step is recorded the recorded-only loads and films
+are read in that call too); `soleimanian2020_unloaded` adds the friction FMU's inputs, doStep
+and output. The master calls the FMUs' C functions directly (fmpy's Python wrapper cost about
+0.4 us a call); pythonfmu's passage from C into the component's Python still costs 1.5-3 us a
+call before the component does anything. Inside: the carriage's RK4 substeps (omega h <= 0.1,
+two in a 4 us step, about 2 us each), the contact's film integration (Heun substeps) and
+evaluation, the feed's two sines. The master's own part (bus, recording) is about 8-9 us a
+step. Against the previous measurement (50.6 and 62.1 us a 4 us step of the dry and the
+lubricated 9000 N / 2500 Hz runs) a step now costs about 40 and 51 us: 3 us from the direct
+calls, 1.5-2 us from the master (one call fewer, no tangent bookkeeping without step control),
+5 us from the carriage's substeps. The friction FMU feeds nothing back; it computes only when
+its recorded output is read, about 65 us an evaluation (parabolic-cylinder functions, both rows
+at once), at every 4 us record point, as the reference evaluates it at every recorded time:
+half of either run's time.
 
-The step the accuracy needs (`--step 4e-6` against each scenario's, whole cycle): 0.005-0.03 %
-of the range for the lubricated responses that had 1 and 2 us steps before (chosen under an
-earlier model), 0.001 % for the dry ones (the contact's force law makes the coupling exact;
+The carriage's substeps, a convergence study (the error against the reference over the whole
+cycle, the limit omega h <= 0.05 / 0.1 / 0.2 rad, i.e. 4 / 2 / 1 substeps in a 4 us step):
+9000 N / 2500 Hz dry 0.0011 / 0.017 / 0.25 %, 9000 N / 4500 Hz dry 0.0004 / 0.017 / 0.93 %,
+9000 N / 2500 Hz 0.0051 / 0.011 / 0.17 %, 12000 N / 4500 Hz (2 us) 0.26 / 0.071 / 0.071 %,
+12000 N / 9500 Hz 0.076 / 0.073 / 0.066 %, 6000 N / 9000 Hz 0.021 / 0.018 / 0.013 %, 9000 N /
+5000 Hz (1 us: one substep under every limit) 0.20 %. RK4's phase error, (omega h)^4 / 120 per
+radian, accumulates in the undamped dry responses over the cycle's 8000 rad: 0.2 rad costs
+them up to 0.9 %, 0.1 rad 0.017 %, far inside 1 % (tests/physics/test_carriage.py has the
+study on the law itself: fourth order, 4e-6 of the range over 2 ms at 0.1 rad).
+
+The step the accuracy needs (`--step 4e-6` against each scenario's, whole cycle, measured
+with omega h <= 0.05): 0.005-0.03 % of the range for the lubricated responses that had 1 and
+2 us steps before (chosen under an earlier model), 0.001 % for the dry ones (the contact's force law makes the coupling exact;
 what is left is the reference's own error); only the near-resonant lift-off cycles need shorter
 steps: 12000 N / 4500 Hz 0.63 % at 4 us (2 us: 0.26 %), 9000 N / 5000 Hz 5.8 % at 4 us, 2.6 %
 at 2 us (1 us: 0.20 %). At 1 us that cycle costs about as much as its reference, and so does
@@ -51,8 +66,8 @@ the unloaded rig with its friction: both sit at the target, within the machine's
 Where the ratio is the wrong yardstick. The dry scenarios: the coupling is exact and the
 reference integrates two smooth states with LSODA (1.1-1.7 s, 1.8-2.3 s with the outputs at
 50 001 times); the co-simulation cannot take fewer than one macro step per record point, and a
-step costs its 9 FMI calls, the carriage's four RK4 substeps and the master's bookkeeping, about
-50 us: 2.5 s over the cycle at the 4 us record interval. `zhang2019_feed_unit_milling` has no
+step costs its 8 FMI calls, the carriage's two RK4 substeps and the master's bookkeeping, about
+40 us: 2 s over the cycle at the 4 us record interval. `zhang2019_feed_unit_milling` has no
 states: the reference integrates nothing and evaluates the same algebraic models (the feed
 unit's equilibrium, about 0.75 ms) at the same 10 001 times as the co-simulation, which can only
 add its calls and bookkeeping (about 50 us a step, 7 %). In both the ratio measures the FMUs'
