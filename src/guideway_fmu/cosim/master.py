@@ -97,6 +97,7 @@ class Bus:
             inputs = sorted(i for t, i in feeds if t == name)
             self._writes[name] = [(inst.writer(group), [feeds[(name, i)] for i in group])
                                   for group in by_type(inst, inputs)]
+        self._observe_all = [g for groups in self._observe.values() for g in groups]
 
     @staticmethod
     def _readers(inst: FmuInstance, keys: set):
@@ -127,8 +128,7 @@ class Bus:
 
     def observe(self, name: str | None = None) -> None:
         """Read the observed-only variables of the instance ``name`` (default: of every one)."""
-        for groups in self._observe.values() if name is None else [self._observe[name]]:
-            self._read(groups)
+        self._read(self._observe_all if name is None else self._observe[name])
 
     def write_inputs(self, name: str) -> None:
         values = self.values
