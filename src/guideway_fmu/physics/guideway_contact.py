@@ -104,8 +104,9 @@ class RollerContact(ContinuousModel):
         hu, hl = films
         n = substeps(h * abs(u) / (FILM_SUBSTEP * max(min(hu, hl), FILM_FLOOR)),
                      "the film (FILM_SUBSTEP h / |u|)")
-        start, end = self.kernel.loads(path(0.0), hu, hl), self.kernel.loads(path(h), hu, hl)
-        if any((a > 0.0) != (b > 0.0) for a, b in zip(start, end)):
+        loads = self.kernel.loads
+        (su, sl), (eu, el) = loads(path(0.0), hu, hl), loads(path(h), hu, hl)
+        if (su > 0.0) != (eu > 0.0) or (sl > 0.0) != (el > 0.0):
             n = max(n, TOUCHDOWN_SUBSTEPS)  # a roller lifts off or lands: the rate's cusp
         dt = h / n
         for i in range(n):
