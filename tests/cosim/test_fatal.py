@@ -56,7 +56,8 @@ def test_fatal_fmu_is_reported_and_the_process_exits_cleanly(faulty, fmu_dir, tm
 def test_a_getter_failing_mid_run_names_the_instance_and_the_step(faulty, fmu_dir, tmp_path,
                                                                   algorithm):
     # reported as "FMU instance None failed during initialisation" before; R.x is recorded
-    # only, so it is first read (and fails) after the step from 5 ms, for the sample at 6 ms
+    # only, so it is first read (and fails) after the step from 5 ms (with the exchanged
+    # outputs, every step being recorded): the values at 6 ms
     fatal_run(faulty, fmu_dir, tmp_path, algorithm, "get", "the faulty model's output broke",
               at="0.006")
 
