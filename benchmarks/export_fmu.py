@@ -240,9 +240,10 @@ def write_page(args, scenario, reference, rows, ratios) -> None:
         "It is the host's doStep and its read of the outputs, two calls through pythonfmu; one "
         "more inner call, because the packed FMU reads an instance's outputs only when the host "
         "asks after a step; and the host's own bookkeeping. A host that communicates at every "
-        "inner step pays it every step (the 1.2 target is missed there since this system's own "
-        "step got 25 % cheaper, the packing's cost staying what it was); one that communicates "
-        "every few inner steps pays it once per communication step. The machine runs other "
+        "inner step pays it every step (the 1.2 target is missed there: the unpacked system reads "
+        "its recorded outputs with the exchanged ones in one call, which the packed FMU, reading "
+        "them on demand, cannot); one that communicates every few inner steps pays it once per "
+        "communication step. The machine runs other "
         "jobs: the ratios move by about 0.1 from run to run.", "",
         "## fmpy's container FMU", "",
         "fmpy 0.3.32 packs FMUs into one FMU too (`fmpy.container_fmu`): a compiled container "
