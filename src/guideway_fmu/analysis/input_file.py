@@ -2,21 +2,9 @@
 names the file, the table and the key."""
 from __future__ import annotations
 
-import tomllib
-from pathlib import Path
-
 import numpy as np
 
-
-def read(path, what: str) -> dict:
-    """The parsed TOML of ``path``; FileNotFoundError or ValueError naming the file."""
-    path = Path(path)
-    try:
-        return tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise FileNotFoundError(f"{path}: no such {what} file") from None
-    except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{path}: not valid TOML: {error}") from None
+from ..cosim.system import read_toml as read  # the parsed TOML; a ValueError naming the file
 
 
 def table(path, data: dict, name: str, required: bool = True) -> dict:

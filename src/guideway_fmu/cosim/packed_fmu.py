@@ -42,7 +42,7 @@ from .fmu_instance import FATAL
 from .master import Execution, Result, SimulationError, by_type, failure
 from .recording import Recording
 from .ssp import base_units
-from .system import load
+from .system import load, typed
 
 DATA = "packed"  # the package's folder holding the scenario and its FMUs
 #: never entered, so no signal stops the inner master: the host's signals are the host's
@@ -50,8 +50,6 @@ NEVER = StopRequests()
 SCENARIO = "system.toml"
 _TYPES = {"Real": Real, "Integer": Integer, "Enumeration": Integer, "Boolean": Boolean,
           "String": String}
-_PARSE = {"Real": float, "Integer": int, "Enumeration": int, "Boolean": lambda t: t in ("true", "1"),
-          "String": str}
 
 
 def data_folder(resources: str) -> Path:
@@ -100,11 +98,11 @@ class PackedSystem(Fmi2Slave):
             for v in variables.values():
                 key = (inst, v.name)
                 if v.causality == "parameter" or v.causality == "input" and key not in fed:
-                    start = given.get(v.name, None if v.start is None else _PARSE[v.type](v.start))
+                    start = given.get(v.name, None if v.start is None else typed(v, v.start))
                     self._register(key, v, start)
                     (self.parameters if v.causality == "parameter" else self.inputs).append(key)
                 elif v.causality == "output" and v.type != "String":
-                    self._register(key, v, _PARSE[v.type](v.start or "0"))
+                    self._register(key, v, typed(v, v.start or "0"))
                     self.outputs.append(key)
         self._input_names = [".".join(k) for k in self.inputs]
         self._outputs_of: dict[str, list] = {}  # instance -> [(bus key, name)] of its outputs

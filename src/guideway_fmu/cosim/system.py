@@ -345,11 +345,26 @@ class TomlTable:
             raise self.error(extra[0], f"is not a known key (known: {', '.join(sorted(allowed))})")
 
 
-def read_toml(path: Path, what: str) -> dict:
+def typed(variable, value):
+    """A start value (a string) or a scenario's value as the Python type of ``variable`` (an
+    fmpy ScalarVariable)."""
+    if variable.type == "Real":
+        return float(value)
+    if variable.type in ("Integer", "Enumeration"):
+        return int(value)
+    if variable.type == "Boolean":
+        return value if isinstance(value, bool) else value in ("true", "1")
+    return value
+
+
+def read_toml(path: str | Path, what: str) -> dict:
     """The TOML file ``path`` (``what`` it is, for the message); a ScenarioError naming the file
     when it cannot be read or parsed."""
+    path = Path(path)
     try:
         return tomllib.loads(path.read_text())
+    except FileNotFoundError as exc:
+        raise ScenarioError(f"{path}: cannot read: no such {what} file") from exc
     except OSError as exc:
         raise ScenarioError(f"{path}: cannot read {what}: {exc.strerror or exc}") from exc
     except tomllib.TOMLDecodeError as exc:

@@ -29,6 +29,7 @@ from fmpy import read_model_description
 from scipy.integrate import solve_ivp
 
 from ..components import registry
+from ..cosim.system import typed
 
 
 @dataclass
@@ -92,17 +93,6 @@ def simulate(system, times=None, rtol: float = 1e-10, method: str | None = None,
 
 
 # -- assembling the system ---------------------------------------------------------------------
-def _typed(variable, value):
-    """A start value (a string) or a scenario's value as the Python type of the variable."""
-    if variable.type == "Real":
-        return float(value)
-    if variable.type in ("Integer", "Enumeration"):
-        return int(value)
-    if variable.type == "Boolean":
-        return value if isinstance(value, bool) else value in ("true", "1")
-    return value
-
-
 class _Block:
     """One component: its continuous-time model, where its states sit in the state vector and
     where each of its inputs comes from: ("state", index), ("output", block, name) or
@@ -120,9 +110,9 @@ class _Block:
                              f"{ids[0]!r}) cannot be modelled by the monolithic reference; it "
                              f"knows {', '.join(known)}")
         variables = {v.name: v for v in md.modelVariables}
-        values = {n: _typed(v, v.start) for n, v in variables.items()
+        values = {n: typed(v, v.start) for n, v in variables.items()
                   if v.causality in ("parameter", "input") and v.start is not None}
-        values.update({n: _typed(variables[n], v) for n, v in comp.parameters.items()})
+        values.update({n: typed(variables[n], v) for n, v in comp.parameters.items()})
         params = {n: values[n] for n, v in variables.items() if v.causality == "parameter"}
         try:
             self.model = known[kind].continuous_model(params)
