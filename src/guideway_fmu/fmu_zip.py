@@ -14,9 +14,13 @@ def rewrite(source: str | Path, target: str | Path,
     new archive is complete). Returns ``target``."""
     source, target = Path(source), Path(target)
     partial = target.with_name(target.name + ".partial")
-    with zipfile.ZipFile(source) as src, \
-            zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as dst:
-        for info in src.infolist():
-            dst.writestr(*transform(info.filename, src.read(info)))
+    try:
+        with zipfile.ZipFile(source) as src, \
+                zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as dst:
+            for info in src.infolist():
+                dst.writestr(*transform(info.filename, src.read(info)))
+    except BaseException:
+        partial.unlink(missing_ok=True)  # nothing half-written left beside the target
+        raise
     partial.replace(target)
     return target

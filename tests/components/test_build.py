@@ -43,3 +43,22 @@ def test_a_file_that_is_no_zip_archive_counts_as_foreign(tmp_path):
     fmu.write_text("not an archive")
     assert build.built_tag(fmu) == build.FOREIGN
     assert build.built_tag(tmp_path / "Missing.fmu") is None
+
+
+def test_a_failed_archive_rewrite_leaves_the_source_and_no_partial_file(tmp_path):
+    import zipfile
+
+    import pytest
+
+    source = tmp_path / "A.fmu"
+    with zipfile.ZipFile(source, "w") as archive:
+        archive.writestr("modelDescription.xml", "<fmiModelDescription/>")
+    before = source.read_bytes()
+
+    def refuse(name, data):
+        raise ValueError(f"{name}: refused")
+
+    with pytest.raises(ValueError, match="modelDescription.xml: refused"):
+        rewrite(source, source, refuse)
+    assert source.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["A.fmu"]
