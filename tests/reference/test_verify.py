@@ -1,10 +1,13 @@
-"""verify's choice of criterion on a chaotic scenario (guideway_fmu.reference.verify)."""
+"""verify: its choice of criterion on a chaotic scenario and the load cycle its statistics use (guideway_fmu.reference.verify)."""
+from types import SimpleNamespace
+
+import numpy as np
 import pytest
 
 from guideway_fmu import scenarios
 from guideway_fmu.analysis import soleimanian2020 as paper
 from guideway_fmu.cosim import system
-from guideway_fmu.reference.verify import format_table, verify
+from guideway_fmu.reference.verify import excitation_period, format_table, verify
 
 
 @pytest.mark.slow
@@ -26,3 +29,12 @@ def test_dry_9000N_2500Hz_under_the_light_preload_is_judged_by_statistics(fmu_di
     assert report["rms_error"]["Contact.F_upper"] > 0.01  # pointwise, it would fail
     assert report["passed"] is True, judged
     assert "criterion: statistics" in format_table(report)
+
+
+def test_a_load_cycle_without_frequency_or_spectral_peak_is_a_named_error():
+    rig = SimpleNamespace(name="still_rig", components={"Body": SimpleNamespace(parameters={})})
+    t = np.linspace(0.0, 0.01, 101)
+    with pytest.raises(ValueError, match="still_rig: no load_frequency parameter and no spectral peak"):
+        excitation_period(rig, t, np.full_like(t, 3.0))
+    # the hand value where a sine gives its own: 1 / 500 Hz
+    assert excitation_period(rig, t, np.sin(2 * np.pi * 500.0 * t)) == pytest.approx(2e-3, rel=0.02)

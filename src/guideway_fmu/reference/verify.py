@@ -39,7 +39,11 @@ def excitation_period(system: System, time, values) -> float:
         frequency = float(component.parameters.get("load_frequency", 0.0))
         if frequency > 0:
             return 1.0 / frequency
-    return 1.0 / float(statistics.spectral_peaks(time, values, 1)[0][0])
+    frequencies = statistics.spectral_peaks(time, values, 1)[0]
+    if not len(frequencies) or frequencies[0] <= 0:
+        raise ValueError(f"{system.name}: no load_frequency parameter and no spectral peak in the "
+                         "judged signal: the load cycle of its statistics is undefined")
+    return 1.0 / float(frequencies[0])
 
 
 def _statistics(system, time, signal, films, cosim: dict, reference: dict, disturbed: list) -> dict:
