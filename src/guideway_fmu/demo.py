@@ -124,6 +124,7 @@ def _sweep(out_dir: Path, fmu_dir: Path, stop: float) -> dict:
     with sweep_run.dask_client(SWEEP_WORKERS) as client:
         outcome = sweep_run.run_sweep(spec, folder, client, progress=False)
     return {"file": "envelope_vs_frequency.toml", "folder": folder.name, "points": outcome.points,
+            "workers": SWEEP_WORKERS,
             "ok": outcome.ok, "failed": outcome.failed,
             "wall_time_s": time.perf_counter() - start,
             "plots": [str(Path(p).relative_to(out_dir)) for p in outcome.files if p.endswith(".png")]}

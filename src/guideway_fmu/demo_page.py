@@ -123,11 +123,12 @@ def _sweep(out: Path, fmus: Path, sweep: dict) -> list[str]:
         f"The shipped example sweep (cf. Figs. 22, 25, 28 of the paper) shortened to "
         f"{data['experiment']['stop']:g} s per point: {data['scenario']} at every combination "
         f"of the listed loads and frequencies, {sweep['ok']} of {data['points_in_design']} "
-        f"points finished, on a local Dask cluster of 2 worker processes in "
+        f"points finished, on a local Dask cluster of {sweep['workers']} worker processes in "
         f"{sweep['wall_time_s']:.1f} s. The tables are results.csv and results.json in "
         f"{sweep['folder']}; the command (into a folder without results.csv, or with --resume "
         "to continue one):",
-        command("sweep", out / sweep["file"], "--fmus", fmus, "--workers", 2, "--out", folder))
+        command("sweep", out / sweep["file"], "--fmus", fmus, "--workers", sweep["workers"],
+                "--out", folder))
     columns = [o["column"] for o in data["outputs"]]
     units = [o["unit"] or "-" for o in data["outputs"]]
     rows = [(*(p["parameters"][n] for n in data["parameters"]),
