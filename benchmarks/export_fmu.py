@@ -44,10 +44,9 @@ from guideway_fmu.cosim import master, system
 from guideway_fmu.cosim.algorithms import tangent_links
 from guideway_fmu.cosim.export_fmu import export_fmu
 from guideway_fmu.reference import monolithic
-from guideway_fmu.reference.verify import compare
+from guideway_fmu.reference.verify import LOAD as SIGNAL, compare
 
 SCENARIO = "soleimanian2020_9000N_4500Hz"
-SIGNAL = "Contact.F_upper"
 REPEATS = 5
 CONTAINER_STEPS = (4e-6, 2e-6, 1e-6, 5e-7, 2.5e-7, 1.25e-7)  # s
 

@@ -144,6 +144,8 @@ def main() -> None:
         print(rows[-1], flush=True)
     options = "".join(f" --{k} {getattr(args, k):g}" for k in ("stop", "step")
                       if getattr(args, k) is not None)
+    if not ratios:
+        raise SystemExit("no scenario compared: the reference models none of them (rows above)")
     summary = (f"Largest ratio {max(ratios):.2f} (target {TARGET:g}, stretch {STRETCH:g}): "
                f"{sum(r <= TARGET for r in ratios)} of {len(ratios)} compared scenarios at most "
                f"{TARGET:g}, {sum(r <= STRETCH for r in ratios)} at most {STRETCH:g}; largest "
