@@ -1,7 +1,7 @@
 """Every FMU in a plain C host, many runs each, with the environment `guideway-fmu host-env`
 prints: exit statuses, written to docs/c-host.md.
 
-The host (src/guideway_fmu/components/c_host.c) does what a commercial tool does: dlopen,
+The host (src/guideway_fmu/fmu_build/c_host.c) does what a commercial tool does: dlopen,
 instantiate, initialise, ten steps at the FMU's default step, read every Real output, terminate,
 free, dlclose, exit. A crash at exit (SIGSEGV, SIGABRT) shows as a negative status. ForceTable is
 given a two-row force table, the only FMU that needs a file.
@@ -16,7 +16,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from guideway_fmu.components import build, host_env
+from guideway_fmu.fmu_build import build, host_env
 
 
 def main() -> None:
@@ -44,7 +44,7 @@ def main() -> None:
     lines = ["# The FMUs in a C host", "",
              "Written by `python benchmarks/c_host_exit.py --runs "
              f"{args.runs}`; do not edit. Each FMU runs {args.runs} times in",
-             "`src/guideway_fmu/components/c_host.c` (dlopen, instantiate, ten steps, read the "
+             "`src/guideway_fmu/fmu_build/c_host.c` (dlopen, instantiate, ten steps, read the "
              "outputs, terminate, free, dlclose, exit) with the environment `guideway-fmu "
              "host-env` prints:", "",
              "```", host_env.exports(environment).rstrip(), "```", "",
@@ -55,7 +55,7 @@ def main() -> None:
         other = ", ".join(f"{k}: {n}" for k, n in sorted(statuses.items()) if k != 0) or "none"
         lines.append(f"| {name} | {args.runs} | {statuses[0]} | {other} | {seconds:.2f} |")
     lines += ["", "Before the build worked around two defects outside this project "
-              "(`components/runtime.py`, `components/exit_patch.py`), FeedKinematics died at exit "
+              "(`components/runtime.py`, `fmu_build/exit_patch.py`), FeedKinematics died at exit "
               "in 10 of 10 runs (SIGSEGV in SciPy's `_uarray` during the interpreter's "
               "finalisation) and HorizontalRig in 5 of 5 runs from one folder (`free(): corrupted "
               "unsorted chunks`, pythonfmu's exit-time use-after-free), after every FMI call had "

@@ -59,7 +59,7 @@ def main(argv=None) -> None:
                              "(default: $GUIDEWAY_FMU_DATA; without it the EMPS records are skipped)")
     args = parser.parse_args(argv)
     fmus = args.out / "fmus"
-    from guideway_fmu.components.build import ensure
+    from guideway_fmu.fmu_build.build import ensure
     from guideway_fmu.components import registry
     ensure(fmus, ["FeedKinematics", "FrictionCoulomb", *registry.names("diagnosis")])
 

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from guideway_fmu.components.build import build
+from guideway_fmu.fmu_build.build import build
 from guideway_fmu.diagnose import truth, truth_vertical, workflow
 
 # the targets

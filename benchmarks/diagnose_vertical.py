@@ -201,7 +201,7 @@ def main(argv=None) -> None:
     args = parser.parse_args(argv)
     generators = [g for g in GENERATORS if g in args.generators.split(",")]
     warnings.simplefilter("ignore")
-    from guideway_fmu.components.build import build
+    from guideway_fmu.fmu_build.build import build
     started = time.perf_counter()
     rows = []
     with tempfile.TemporaryDirectory() as folder:

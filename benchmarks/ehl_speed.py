@@ -1,4 +1,4 @@
-"""Wall time of the mixed-EHL solver (physics/ehl) against a dense-matrix Newton baseline.
+"""Wall time of the mixed-EHL solver (physics/roller_guide/ehl) against a dense-matrix Newton baseline.
 
 Steady smooth line contact at W = 1e-4, U = 1e-11, G = 4500 (Soleimanian et al.'s check point) on
 N = 513, 1025 and 2049 nodes, all measured in one run (wall time: the least of REPEAT runs):
@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 from scipy.linalg import solve_banded, toeplitz
 
-from guideway_fmu.physics.ehl import LineContactEHL, solver
+from guideway_fmu.physics.roller_guide.ehl import LineContactEHL, solver
 
 W, U, G = 1e-4, 1e-11, 4500.0
 SIZES = (513, 1025, 2049)

@@ -1,4 +1,4 @@
-"""Accuracy of the mixed-EHL solver (physics/ehl) against published film formulas, written to
+"""Accuracy of the mixed-EHL solver (physics/roller_guide/ehl) against published film formulas, written to
 docs/ehl-validation.md.
 
     python benchmarks/ehl_validation.py [--out docs/ehl-validation.md]
@@ -20,7 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-from guideway_fmu.physics.ehl import LineContactEHL, pan_hamrock, solve_dimensionless, solve_steady
+from guideway_fmu.physics.roller_guide.ehl import (LineContactEHL, pan_hamrock,
+                                                   solve_dimensionless, solve_steady)
 
 LOADS = (2e-5, 1e-4, 3e-4)
 SPEEDS = (1e-12, 1e-11, 1e-10)
@@ -73,7 +74,7 @@ def page(command: str, table: dict, rough: list) -> str:
     worst = max(table, key=lambda key: abs(table[key][0]))
     lines = [
         "# Mixed-EHL solver against published film formulas", "",
-        f"Written by `{command}`; rerun it after changing physics/ehl.", "",
+        f"Written by `{command}`; rerun it after changing physics/roller_guide/ehl.", "",
         "Smooth steady line contact, default grid, E' = 2e11 Pa, mu0 = 0.195 Pa s. Deviation in % "
         "of the solver's central film H_c and minimum film H_min from Pan and Hamrock (1989, PH: "
         "H_c = 2.922 W^-0.166 U^0.692 G^0.470, H_min = 1.714 W^-0.128 U^0.694 G^0.568) and of "

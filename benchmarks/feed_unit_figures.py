@@ -18,7 +18,7 @@ import numpy as np
 
 from guideway_fmu.analysis import feed_unit as fa
 from guideway_fmu.analysis.feed_unit_plots import plot_sweep
-from guideway_fmu.physics import feed_unit as fu
+from guideway_fmu.physics.ball_guides import feed_unit as fu
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "orchestration" / "ball_guides"

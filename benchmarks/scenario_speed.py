@@ -19,7 +19,7 @@ import time
 from pathlib import Path
 
 from guideway_fmu import scenarios
-from guideway_fmu.components.build import ensure
+from guideway_fmu.fmu_build.build import ensure
 from guideway_fmu.cosim import master, system
 from guideway_fmu.cosim.observers import Observer
 from guideway_fmu.reference import monolithic

@@ -29,11 +29,11 @@ import numpy as np  # noqa: E402
 from guideway_fmu import scenarios  # noqa: E402
 from guideway_fmu.analysis import ehl  # noqa: E402
 from guideway_fmu.analysis import soleimanian2020 as paper  # noqa: E402
-from guideway_fmu.components import build  # noqa: E402
+from guideway_fmu.fmu_build import build  # noqa: E402
 from guideway_fmu.cosim import master, system  # noqa: E402
-from guideway_fmu.cosim.plots import spectrum  # noqa: E402
-from guideway_fmu.physics import guideway  # noqa: E402
-from guideway_fmu.physics.film import LineContact  # noqa: E402
+from guideway_fmu.numerics.spectrum import spectrum  # noqa: E402
+from guideway_fmu.physics.roller_guide import four_rows  # noqa: E402
+from guideway_fmu.physics.roller_guide.film import LineContact  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 LOAD_CASES = {6000: (2500, 3000, 4500, 5000, 9000), 9000: (2500, 3000, 4500, 5000, 9000),
@@ -288,8 +288,8 @@ def statements(readings, runs, solutions: dict) -> list[dict]:
     course = {}
     for r in readings:
         g = r.guideway()
-        k = guideway.quasi_static_stiffness(g, y, paper.RIG_SPEED)
-        lower = guideway.quasi_static_state(g, y, paper.RIG_SPEED)[1]
+        k = four_rows.quasi_static_stiffness(g, y, paper.RIG_SPEED)
+        lower = four_rows.quasi_static_state(g, y, paper.RIG_SPEED)[1]
         turn = int(np.argmin(k))
         course[r.name] = (float(lower[-1] / g.preload_per_roller), 0 < turn < y.size - 1, y[turn])
     add("S3-S4", "Fig. 3", "the lower rows unload and past it the stiffness K(y) changes course "
@@ -474,7 +474,7 @@ def main(argv=None) -> None:
                      f"{roller(r.preload_per_roller, paper.RIG_SPEED).hertz_pressure / 1e9:.2f} | "
                      f"{r.preload:.0f} | {r.mass:.3f} | {count[r.name]} / {len(rows)} |")
     shipped = next((r.name for r in readings
-                    if abs(r.preload - guideway.Guideway().preload) < 1e-9), "none of them")
+                    if abs(r.preload - four_rows.Guideway().preload) < 1e-9), "none of them")
     lines += ["", f"Most statements reproduced: `{default.name}`. The FMUs' defaults and the "
               f"shipped scenarios follow `{shipped}`; any reading is a parameter set of a "
               "scenario (`Reading.parameters()`: the contact's `preload`, the carriage's "

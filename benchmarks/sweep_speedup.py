@@ -19,7 +19,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from guideway_fmu.components import build
+from guideway_fmu.fmu_build import build
 from guideway_fmu.sweep import run, sweep_file
 from guideway_fmu.sweep.point import run_point
 

@@ -1,7 +1,7 @@
 """How the loaded results of Soleimanian et al. (2020) depend on the rule for the film of a
 roller whose load vanishes, written to docs/unloaded-film.md.
 
-The model has no such rule (physics/film.py, "The film of an unloaded roller"): the film state
+The model has no such rule (physics/roller_guide/film.py, "The film of an unloaded roller"): the film state
 of a lifted roller grows at the squeeze relation's limit |u| S_MAX / 132. This script puts back
 the floor the project used before (the unsqueezed film held at its value for loads below a
 floor F_f) by wrapping RowKernel.film_rate for the run, and compares, on the scenarios whose
@@ -31,11 +31,11 @@ import numpy as np
 
 from guideway_fmu import scenarios
 from guideway_fmu.analysis import soleimanian2020 as paper
-from guideway_fmu.components import build
+from guideway_fmu.fmu_build import build
 from guideway_fmu.cosim import master, system
-from guideway_fmu.physics.carriage import Carriage
-from guideway_fmu.physics.film import LineContact, film_law
-from guideway_fmu.physics.guideway import RowKernel
+from guideway_fmu.physics.roller_guide.carriage import Carriage
+from guideway_fmu.physics.roller_guide.film import LineContact, film_law
+from guideway_fmu.physics.roller_guide.four_rows import RowKernel
 from guideway_fmu.reference import monolithic
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -93,12 +93,12 @@ def main(argv=None) -> None:
              "rerun it after changing the film or the contact.", "",
              "The film law h_s ~ F^-0.045 of Soleimanian et al. (2020) eq. 4 diverges as a "
              "roller's load vanishes. The model follows the squeeze relation to its limit "
-             "instead (physics/film.py): a lifted roller keeps its film, which grows at "
+             "instead (physics/roller_guide/film.py): a lifted roller keeps its film, which grows at "
              "|u| S_MAX / 132 until the roller lands again. Below, the floor this project used "
              "before (the unsqueezed film held at its value for loads under F_f; 0.4 N) is put "
              "back for comparison. A floor enters through h / h_s = h F_f^m / C (m = 0.045): "
              "the change falls only as F_f^m, and vanishes exactly once that ratio is under "
-             "0.01, where the squeeze exponent's bound S_MAX takes over (physics/film.py). The "
+             "0.01, where the squeeze exponent's bound S_MAX takes over (physics/roller_guide/film.py). The "
              "cases are the lubricated scenarios whose rollers lift off under the default "
              "reading of the preload (the other 14 never unload a roller, and no floor changes "
              "them) and one under the light reading, whose rows lift off every load cycle.", ""]

@@ -14,7 +14,7 @@ import argparse
 from pathlib import Path
 
 from guideway_fmu import scenarios
-from guideway_fmu.components.build import ensure
+from guideway_fmu.fmu_build.build import ensure
 from guideway_fmu.cosim import system
 from guideway_fmu.reference.verify import verify
 

@@ -14,9 +14,9 @@ import argparse
 import dataclasses
 from pathlib import Path
 
-from guideway_fmu.analysis import wear as wa
+from guideway_fmu.analysis import raceway_wear as wa
 from guideway_fmu.analysis.wear_plots import plot_figures
-from guideway_fmu.physics import wear
+from guideway_fmu.physics.wear import raceway_wear
 
 ROOT = Path(__file__).resolve().parents[1]
 CASE = ROOT / "orchestration" / "ball_guides" / "zhang_wear_lg20_2kN.toml"
@@ -26,7 +26,7 @@ SENSITIVITY = (("fractal_dimension", (2.2, 2.4, 2.6, 2.8)), ("friction", (0.05, 
 
 def _distance_table(case: wa.WearCase) -> tuple[list[str], float | None]:
     """Wear against distance, to past the preload loss, at logarithmic distances."""
-    run = wear.simulate(case.guide, case.load, 5e8, 3)
+    run = raceway_wear.simulate(case.guide, case.load, 5e8, 3)
     lost = run.preload_lost_at
     lines = ["| distance [km] | wear depth [nm] | preload deformation [um] | preload [N] "
              "| upper ball load [N] | slider displacement [um] | added by wear [nm] |",
@@ -54,8 +54,8 @@ def _sensitivity(case: wa.WearCase) -> list[str]:
             guide, load = case.guide, value
         else:
             guide, load = dataclasses.replace(case.guide, **{name: value}), case.load
-        depth = wear.simulate(guide, load, 5000.0, 2).columns["wear_depth"][-1]
-        lost = wear.simulate(guide, load, 1e10, 2).preload_lost_at
+        depth = raceway_wear.simulate(guide, load, 5000.0, 2).columns["wear_depth"][-1]
+        lost = raceway_wear.simulate(guide, load, 1e10, 2).preload_lost_at
         creep = wa.contact_summary(guide, load)["upper"]["creep_rate"]
         lines.append(f"| {name} | {value:g} | {1e9 * depth:.4g} | {creep:.3e} | "
                      + (f"{lost / 1e3:.4g} |" if lost is not None else "not within 1e7 km |"))

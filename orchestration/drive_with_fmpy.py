@@ -25,7 +25,7 @@ from pathlib import Path
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 
-from guideway_fmu.process import exit_without_finalising
+from guideway_fmu.cosim.interrupts import exit_without_finalising
 
 HERE = Path(__file__).resolve().parent
 STEP = 2e-6  # s, macro step h (the contact resonance is ~6.6 kHz: omega*h ~ 0.08)
@@ -180,4 +180,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    exit_without_finalising(main() or 0)  # FMUs loaded: see guideway_fmu.process
+    exit_without_finalising(main() or 0)  # FMUs loaded: see guideway_fmu.cosim.interrupts

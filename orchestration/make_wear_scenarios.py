@@ -17,7 +17,7 @@ Built in code and written by the package's one scenario writer (``cosim.system.d
 from pathlib import Path
 
 from guideway_fmu.cosim.system import Builder, dump
-from guideway_fmu.physics import hertz_point
+from guideway_fmu.physics.ball_guides import hertz_point
 from guideway_fmu.scenarios import FOLDER
 
 HEADER = "Written by orchestration/make_wear_scenarios.py; edit that script, not this file."

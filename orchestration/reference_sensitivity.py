@@ -22,7 +22,7 @@ import numpy as np
 from guideway_fmu.reference import monolithic
 from guideway_fmu import scenarios
 from guideway_fmu.cosim import system
-from guideway_fmu.process import exit_without_finalising
+from guideway_fmu.cosim.interrupts import exit_without_finalising
 
 SIGNAL = "Contact.F_upper"
 
@@ -60,4 +60,4 @@ for path in map(scenarios.find, args.scenarios or scenarios.names()):
     print(json.dumps({"scenario": s.name, "signal": SIGNAL, "offset_m": args.offset,
                       "rms_offset": offset_rms, "rms_offset_per_eighth": offset_parts,
                       **changed_rtol}), flush=True)
-exit_without_finalising(0)  # FMUs loaded: see guideway_fmu.process
+exit_without_finalising(0)  # FMUs loaded: see guideway_fmu.cosim.interrupts

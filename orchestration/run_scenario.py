@@ -10,7 +10,7 @@ from pathlib import Path
 
 from guideway_fmu import scenarios
 from guideway_fmu.cosim import master, plots, system
-from guideway_fmu.process import exit_without_finalising
+from guideway_fmu.cosim.interrupts import exit_without_finalising
 
 HERE = Path(__file__).resolve().parent
 
@@ -41,4 +41,4 @@ f_upper = result.recording.columns.get("Contact.F_upper")  # N, load of one uppe
 if f_upper is not None:
     print(f"Contact.F_upper: min {f_upper.min():.2f} N, max {f_upper.max():.2f} N")
 print("wrote", csv, *(png.name for png in pngs))
-exit_without_finalising(0)  # FMUs loaded: see guideway_fmu.process
+exit_without_finalising(0)  # FMUs loaded: see guideway_fmu.cosim.interrupts

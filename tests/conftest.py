@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from pythonfmu.builder import FmuBuilder
 
-from guideway_fmu.components import exit_patch
+from guideway_fmu.fmu_build import exit_patch
 
 
 def real_data_folder() -> Path:
@@ -20,7 +20,7 @@ def real_data_folder() -> Path:
 def fmu_dir(tmp_path_factory):
     """All FMUs, extensions included (and their README.md), built once per test session into a
     temporary folder."""
-    from guideway_fmu.components.build import build
+    from guideway_fmu.fmu_build.build import build
 
     out = tmp_path_factory.mktemp("fmus")
     build(out)

@@ -6,14 +6,14 @@ import subprocess
 import sys
 import zipfile
 from html.parser import HTMLParser
-from pathlib import Path
 
 import numpy as np
 import pytest
 from fmpy import read_model_description
 
-from guideway_fmu import cli, demo, scenarios
-from guideway_fmu.physics import guideway
+from guideway_fmu import cli, scenarios
+from guideway_fmu.demo import job
+from guideway_fmu.physics.roller_guide import four_rows
 
 
 def test_cli_unknown_fmu_is_a_clear_error(tmp_path, capsys):
@@ -31,12 +31,12 @@ def test_cli_facts_natural_frequency_near_published_6590_hz(capsys):
 
 def test_stiffness_curves_through_fmus_match_physics_derivative(fmu_dir):
     y = np.linspace(-1e-6, 1e-6, 21)  # both rows loaded: no kink inside the differences
-    curves = demo.stiffness_curves(fmu_dir, y)
-    g = guideway.Guideway()
+    curves = job.stiffness_curves(fmu_dir, y)
+    g = four_rows.Guideway()
     inner = slice(1, -1)  # np.gradient is one-sided at the ends
     np.testing.assert_allclose(curves["K_dry"][inner], curves["K_contact_output_dry"][inner], rtol=2e-3)
     np.testing.assert_allclose(curves["K_lubricated"][inner],
-                               guideway.quasi_static_stiffness(g, y, demo.RIG_SPEED)[inner], rtol=2e-3)
+                               four_rows.quasi_static_stiffness(g, y, job.RIG_SPEED)[inner], rtol=2e-3)
     assert abs(curves["F_lubricated"][10]) < 1e-6  # y = 0: symmetric preload
 
 
@@ -108,7 +108,7 @@ def test_demo_main_job_end_to_end_from_another_directory(demo_run):
     tmp_path, done = demo_run
     summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
     assert (tmp_path / "fmus" / "ContactEHL.fmu").is_file()
-    assert set(summary["runs"]) == set(demo.DEMO_SCENARIOS)
+    assert set(summary["runs"]) == set(job.DEMO_SCENARIOS)
     assert summary["verify"]["soleimanian2020_9000N_4500Hz"]["rms_error_Contact.F_upper"] < 0.01
     assert (tmp_path / "demo" / "soleimanian2020_9000N_4500Hz_dry" / "spectrum.png").exists()
     diagnosis = summary["diagnose"]
@@ -229,7 +229,7 @@ def test_exit_without_finalising_keeps_buffered_output_and_the_code():
     # the exit FMU-loading programs take (issue 21's finalisation crash): what was printed
     # without a newline still arrives, the code is the one given, and no atexit handler runs
     program = ("import atexit, sys\n"
-               "from guideway_fmu.process import exit_without_finalising\n"
+               "from guideway_fmu.cosim.interrupts import exit_without_finalising\n"
                "atexit.register(lambda: print('finalised'))\n"
                "print('out', end='')\n"
                "sys.stderr.write('err')\n"

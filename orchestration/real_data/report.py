@@ -209,7 +209,7 @@ def gaps(record: Record) -> str:
 
 def stribeck_level(speed, p):
     """The lubrication candidate's friction magnitude at speed > 0 (its law in
-    physics/friction_effects.py: Stribeck plus a power-law viscous term)."""
+    physics/rigs/friction_laws.py: Stribeck plus a power-law viscous term)."""
     return (p["coulomb"] + (p["static"] - p["coulomb"])
             * np.exp(-(speed / p["stribeck_velocity"]) ** p.get("stribeck_exponent", 2.0))
             + p["viscous"] * speed ** p.get("viscous_exponent", 1.0))

@@ -11,7 +11,7 @@ from fractions import Fraction
 from pathlib import Path
 
 from .cosim.algorithms import ALGORITHMS
-from .process import exit_without_finalising
+from .cosim.interrupts import exit_without_finalising
 
 
 def _scenario_args(p) -> None:
@@ -169,7 +169,7 @@ def _wear(args) -> str:
 
 
 def _host_env(fmu) -> int:
-    from .components import host_env
+    from .fmu_build import host_env
     environment = host_env.host_environment()
     print(host_env.exports(environment), end="")
     if fmu is None:
@@ -186,7 +186,7 @@ def _host_env(fmu) -> int:
 
 def _demo(args) -> str:
     """The demo's short summary and where its page is."""
-    from .demo import run_demo
+    from .demo.job import run_demo
     s = run_demo(args.out, args.fmus, args.stop)
     lines = [f"stiffness at y = 0: {s['stiffness_at_y0_lubricated_N_per_m']:.4g} N/m lubricated, "
              f"{s['stiffness_at_y0_dry_N_per_m']:.4g} N/m dry"]
@@ -283,7 +283,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         if args.command == "build":
-            from .components.build import build
+            from .fmu_build.build import build
             for path in build(args.out, args.names or None):
                 print(path)
         elif args.command == "host-env":
@@ -325,7 +325,7 @@ def main(argv: list[str] | None = None) -> int:
             result = carriage_modes.analyse(carriage_modes.read_carriage(args.carriage))
             print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result))
         elif args.command == "facts":
-            from .demo import rig_facts
+            from .analysis.soleimanian2020 import rig_facts
             print(json.dumps(rig_facts(args.u), indent=2))
         elif args.command in ("ehl", "ehl-cycle"):
             print(_ehl(args))

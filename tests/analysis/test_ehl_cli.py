@@ -1,7 +1,6 @@
 """``guideway-fmu ehl`` and ``guideway-fmu ehl-cycle``: numbers, files and errors."""
 import csv
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -9,7 +8,8 @@ import pytest
 from guideway_fmu import scenarios
 from guideway_fmu.analysis import ehl as ea
 from guideway_fmu.cli import main
-from guideway_fmu.physics.ehl import EHLConvergenceError, LineContactEHL, pan_hamrock, solve_steady
+from guideway_fmu.physics.roller_guide.ehl import (EHLConvergenceError, LineContactEHL,
+                                                   pan_hamrock, solve_steady)
 
 CHECK_POINT = ["--W", "1e-4", "--U", "1e-11", "--G", "4500"]
 SCENARIO = scenarios.find("soleimanian2020_9000N_9000Hz")

@@ -9,7 +9,7 @@ import pytest
 from guideway_fmu import scenarios
 from guideway_fmu.analysis import soleimanian2020 as paper
 from guideway_fmu.cosim import system
-from guideway_fmu.physics import carriage, guideway
+from guideway_fmu.physics.roller_guide import carriage, four_rows
 
 
 def test_readings_share_9200_n_over_80_40_and_20_rollers_hand_values():
@@ -28,17 +28,17 @@ def test_each_readings_mass_gives_the_published_natural_frequency(reading):
 def test_the_groove_reading_is_the_fmus_default():
     # the default reading is the one that reproduces the most statements (docs/physics.md)
     groove = paper.readings()[2]
-    assert guideway.Guideway().preload == groove.preload
+    assert four_rows.Guideway().preload == groove.preload
     assert carriage.Carriage().mass == groove.mass
 
 
 def test_film_to_solid_stiffness_is_the_numerical_derivative_ratio():
     # d delta / dF of the solids against dh / dF of the steady film, by central differences
-    g = guideway.Guideway()
-    f_u, _, _, _ = guideway.quasi_static_state(g, 0.0, paper.RIG_SPEED)
+    g = four_rows.Guideway()
+    f_u, _, _, _ = four_rows.quasi_static_state(g, 0.0, paper.RIG_SPEED)
     f = float(f_u)
     step = 1e-4 * f
-    from guideway_fmu.physics import film
+    from guideway_fmu.physics.roller_guide import film
     dh = (film.steady_film(g.contact, f + step, paper.RIG_SPEED)
           - film.steady_film(g.contact, f - step, paper.RIG_SPEED)) / (2 * step)
     ddelta = (((f + step) / g.k) ** 0.9 - ((f - step) / g.k) ** 0.9) / (2 * step)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from guideway_fmu.cli import main
-from guideway_fmu.physics import fractal
+from guideway_fmu.physics.wear import fractal
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "orchestration" / "ball_guides"
 LG20 = EXAMPLES / "zhang_wear_lg20_2kN.toml"

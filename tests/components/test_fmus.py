@@ -26,7 +26,7 @@ from fmpy.logging import addLoggerProxy
 from fmpy.validation import validate_fmu
 
 from guideway_fmu.components import registry
-from guideway_fmu.physics.roller_contact import OpposedRows
+from guideway_fmu.physics.roller_guide.roller_law import OpposedRows
 
 NAMES = registry.names("guideway")
 STATUS_DISCARD = 2
@@ -349,13 +349,13 @@ def test_ehl_interpolated_inputs_convergence_on_a_curved_motion_against_scipy(op
     # extrapolating from end-of-step inputs leads the path by a step: 40-70x worse.
     from scipy.integrate import solve_ivp
 
-    from guideway_fmu.physics import guideway
+    from guideway_fmu.physics.roller_guide import four_rows
 
     span, u = 2e-5, 0.29
     a = 2e-6 / span**2  # m/s^2
-    g = guideway.Guideway()
-    _, _, hu0, hl0 = guideway.quasi_static_state(g, 0.0, u)
-    ref = solve_ivp(lambda t, f: np.ravel(guideway.film_rates(g, 0.5 * a * t * t, f[0], f[1], u)),
+    g = four_rows.Guideway()
+    _, _, hu0, hl0 = four_rows.quasi_static_state(g, 0.0, u)
+    ref = solve_ivp(lambda t, f: np.ravel(four_rows.film_rates(g, 0.5 * a * t * t, f[0], f[1], u)),
                     (0.0, span), [float(hu0), float(hl0)], method="DOP853", rtol=1e-12, atol=1e-20)
     error = {}
     for interpolate in (True, False):
@@ -416,7 +416,7 @@ def test_vertical_dynamics_matches_uniform_acceleration(open_fmu):
 def test_vertical_dynamics_harmonic_oscillator_returns_after_one_period(open_fmu):
     # F_contact is the force at the start of each step, extrapolated over the step with K_contact;
     # a linear spring F = K y coupled that way is integrated to RK4 accuracy (5e-8 rad per rad,
-    # physics/carriage.py): y = 1e-6 cos(omega t).
+    # physics/roller_guide/carriage.py): y = 1e-6 cos(omega t).
     stiffness = 1e6
     body = open_fmu("VerticalDynamics", K_contact=stiffness, gravity=0.0, y_start=1e-6)
     period = 2 * math.pi * math.sqrt(MASS / stiffness)
@@ -439,7 +439,7 @@ def test_vertical_dynamics_harmonic_load_parameters_hand_calculation(open_fmu):
     # v = g t + (static t + A / W (cos(phase) - cos(W t + phase))) / M
     w = 2 * math.pi * 50.0
     v = GRAVITY * 7e-3 + (50.0 * 7e-3 + 100.0 / w * (math.cos(0.3) - math.cos(w * 7e-3 + 0.3))) / MASS
-    # the RK4 substeps (omega h <= 0.1, physics/carriage.py) leave 7e-9 of it
+    # the RK4 substeps (omega h <= 0.1, physics/roller_guide/carriage.py) leave 7e-9 of it
     assert body.get("y_dot") == pytest.approx(v, rel=2e-8)
 
 
@@ -756,9 +756,9 @@ def test_committed_fmus_readme_is_up_to_date(fmu_dir):
 def test_ehl_film_integration_matches_tight_scipy_solution_of_the_array_physics(open_fmu):
     # Films start steady at u = 0.05 m/s, then the feed jumps to 0.29 m/s with the body moving
     # at 2 mm/s: the FMU's Heun substeps against solve_ivp (DOP853, rtol 1e-11) of
-    # guideway.film_rates, the array functions (independent of the float kernel).
+    # four_rows.film_rates, the array functions (independent of the float kernel).
     from scipy.integrate import solve_ivp
-    from guideway_fmu.physics import guideway as gw
+    from guideway_fmu.physics.roller_guide import four_rows as gw
     y0, v, u, h, n = 1e-7, 2e-3, 0.29, 2e-6, 250
     contact = open_fmu("ContactEHL", y=y0, y_dot=v, u=0.05)
     films = [contact.get("h_upper"), contact.get("h_lower")]
@@ -791,7 +791,7 @@ def test_ball_carriage_starts_in_equilibrium_under_the_moment_hand_check(open_fm
 def test_ball_carriage_vertical_oscillation_has_the_modal_frequency_limiting_case(open_fmu):
     # undamped, released from equilibrium under F_z = -5 N when the force drops to 0: the
     # vertical mode alone, at the frequency of the tangent stiffness (3.6 kHz for Table 2)
-    from guideway_fmu.physics import ball_carriage as bc
+    from guideway_fmu.physics.ball_guides import carriage_5dof as bc
     slave = open_fmu("BallCarriage5DOF", F_z=-0.5, ball_damping=0.0)
     slave.set(F_z=0.0)
     h, v = 2e-6, []
@@ -810,7 +810,7 @@ def test_ball_carriage_vertical_oscillation_has_the_modal_frequency_limiting_cas
 
 def slave_parameters():
     """The BallCarriage5DOF defaults, as its model factory takes them."""
-    from guideway_fmu.components.ball_carriage import BallCarriage5DOF
+    from guideway_fmu.components.ball_guides.carriage_5dof import BallCarriage5DOF
     return BallCarriage5DOF(instance_name="defaults", resources=None).parameter_values()
 
 
@@ -866,9 +866,9 @@ def test_milling_force_fmu_follows_the_spindle_hand_calculation(open_fmu):
 def test_wear_fmu_stepped_along_the_distance_matches_the_wear_command_physics(open_fmu):
     # 40 steps of 1e5 m against one solve_ivp over 4e6 m with the preload loss as an event:
     # independent integrations of the same rates
-    from guideway_fmu.physics import wear
-    guide = wear.Guide(wear_coefficient=0.5)
-    run = wear.simulate(guide, 2000.0, 4e6, 41)
+    from guideway_fmu.physics.wear import raceway_wear
+    guide = raceway_wear.Guide(wear_coefficient=0.5)
+    run = raceway_wear.simulate(guide, 2000.0, 4e6, 41)
     slave = open_fmu("Wear", F_load=2000.0, wear_coefficient=0.5)
     got = []
     for k in range(1, 41):

@@ -11,7 +11,7 @@ from fmpy.validation import validate_fmu
 
 from guideway_fmu.components import registry
 from guideway_fmu.cosim.fmu_instance import FmuInstance
-from guideway_fmu.physics import friction_effects as fl
+from guideway_fmu.physics.rigs import friction_laws as fl
 
 LOADS = {"coefficient": 0.01, "rollers_per_groove": 10, "F_upper": 50.0, "F_lower": 50.0,
          "velocity_tolerance": 0.0}  # Coulomb level 0.01 * 2 * 10 * 100 = 20 N

@@ -12,7 +12,7 @@ from guideway_fmu.reference import monolithic
 from guideway_fmu.cosim import algorithms, master, observers, system
 from guideway_fmu.cosim.fmu_instance import FmuInstance
 from guideway_fmu.cosim.run import run
-from guideway_fmu.physics import carriage, guideway
+from guideway_fmu.physics.roller_guide import carriage, four_rows
 from guideway_fmu import scenarios
 
 RIG = """
@@ -189,7 +189,7 @@ def test_order_steps_state_outputs_before_feedthrough_in_a_loop(tmp_path, fmu_di
 # -- algorithms: independent checks -------------------------------------------------------
 def linear_frequency():
     """Natural frequency [Hz] of the dry guideway on the 2.9 kg body for small motion."""
-    k = float(guideway.quasi_static_stiffness(guideway.Guideway(), 0.0, lubricated=False))
+    k = float(four_rows.quasi_static_stiffness(four_rows.Guideway(), 0.0, lubricated=False))
     return math.sqrt(k / carriage.Carriage().mass) / (2 * math.pi)
 
 
@@ -241,7 +241,7 @@ def test_independent_reference_contact_law_handed_to_the_body_cuts_the_error_2_5
     # the body's step) against the linear tangent alone. Measured: 2.6e-4 against 7.7e-4 of the
     # F_upper range (1.1e-4 against 4.7e-4 with 2.9 kg instead of the reading's 2.903 kg: lift-off
     # makes the cycle sensitive); what is left is the film rate's cusp where a roller lands
-    # (physics/film.py), and falls with the step (1.5e-4 at 1 us).
+    # (physics/roller_guide/film.py), and falls with the step (1.5e-4 at 1 us).
     path = scenarios.find("soleimanian2020_9000N_2500Hz")
     light = paper.readings()[0]  # 9200 N over all 80 rollers: the rows lift off every cycle
     with_law = system.load(path, fmu_dir).with_changes(stop=0.01, step=2e-6,

@@ -236,8 +236,8 @@ def test_export_fmu_command_names_an_unknown_scenario(tmp_path, capsys):
 @pytest.mark.slow
 def test_the_packed_fmu_exits_cleanly_in_a_c_host_and_agrees_with_fmpy(packed, tmp_path):
     """The inner pythonfmu FMUs re-enter the interpreter through ctypes from the outer FMU's
-    Python: in a C host (components/c_host.c) as in Python, 3 runs, each exit status 0."""
-    from guideway_fmu.components import host_env
+    Python: in a C host (fmu_build/c_host.c) as in Python, 3 runs, each exit status 0."""
+    from guideway_fmu.fmu_build import host_env
     environment = host_env.host_environment()
     executable = host_env.compile_c_host(tmp_path)
     runs = [host_env.run_in_c_host(executable, packed, environment, work_dir=tmp_path, steps=10)

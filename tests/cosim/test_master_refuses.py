@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from pythonfmu.builder import FmuBuilder
 
-from guideway_fmu.components import exit_patch
+from guideway_fmu.fmu_build import exit_patch
 from guideway_fmu.cosim import master, system
 
 PROBE = '''

@@ -3,7 +3,8 @@ import numpy as np
 import pytest
 
 from guideway_fmu.cosim.recording import Recording
-from guideway_fmu.cosim.plots import peak_indices, envelope, plot_all, plot_film, plot_spectra, plot_time, spectrum
+from guideway_fmu.numerics.spectrum import peak_indices, spectrum
+from guideway_fmu.cosim.plots import envelope, plot_all, plot_film, plot_spectra, plot_time
 
 FS = 20_000.0  # sampling rate [Hz]
 

@@ -1,4 +1,4 @@
-"""The film of a roller that lifts off (physics/film.py): results converge with the macro step
+"""The film of a roller that lifts off (physics/roller_guide/film.py): results converge with the macro step
 and do not hang on a load threshold (benchmarks/unloaded_film.py writes the full study)."""
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import pytest
 from guideway_fmu import scenarios
 from guideway_fmu.analysis import soleimanian2020 as paper
 from guideway_fmu.cosim import master, system
-from guideway_fmu.physics.guideway import RowKernel
+from guideway_fmu.physics.roller_guide.four_rows import RowKernel
 from guideway_fmu.reference import monolithic
 
 # the rows lift off every load cycle under the light reading of the preload (9200 N over all 80

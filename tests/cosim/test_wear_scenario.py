@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 
 from guideway_fmu import scenarios
-from guideway_fmu.components.ball_carriage import BallCarriage5DOF
+from guideway_fmu.components.ball_guides.carriage_5dof import BallCarriage5DOF
 from guideway_fmu.cosim import master, system
-from guideway_fmu.physics import ball_carriage as bc
-from guideway_fmu.physics import wear
+from guideway_fmu.physics.ball_guides import carriage_5dof as bc
+from guideway_fmu.physics.wear import raceway_wear
 from guideway_fmu.reference import monolithic
 
 
@@ -21,13 +21,13 @@ def run(fmu_dir):
 def test_preload_is_lost_where_the_wear_physics_puts_it(run):
     scenario, rec = run
     wear_parameters = scenario.components["Wear"].parameters
-    guide = wear.Guide(ball_diameter=wear_parameters["ball_diameter"],
+    guide = raceway_wear.Guide(ball_diameter=wear_parameters["ball_diameter"],
                        conformity=wear_parameters["conformity"],
                        balls_per_row=wear_parameters["balls_per_row"],
                        preload_deformation=wear_parameters["initial_deformation"],
                        youngs_modulus=wear_parameters["youngs_modulus"],
                        poisson_ratio=wear_parameters["poisson_ratio"])
-    expected = wear.simulate(guide, wear_parameters["F_load"], 2e9, 3).preload_lost_at
+    expected = raceway_wear.simulate(guide, wear_parameters["F_load"], 2e9, 3).preload_lost_at
     distance, preload = rec.columns["Service.x"], rec.columns["Wear.preload"]
     lost = distance[np.flatnonzero(preload == 0.0)[0]]
     step = np.diff(distance)[0]

@@ -8,12 +8,13 @@ import pytest
 
 from guideway_fmu.components import registry
 from guideway_fmu.diagnose import candidates, truth
-from guideway_fmu.physics import friction_effects, roller_friction
+from guideway_fmu.physics.rigs import friction_laws
+from guideway_fmu.physics.roller_guide import friction
 
 
 def test_every_candidate_names_a_built_fmu_and_a_physics_law():
     built = set(registry.names())
-    laws = [f for module in (friction_effects, roller_friction) for f in vars(module).values()
+    laws = [f for module in (friction_laws, friction) for f in vars(module).values()
             if callable(f)]
     for effect, cls in candidates.CANDIDATES.items():
         assert cls.fmu_name in built, effect

@@ -15,7 +15,7 @@ from guideway_fmu.diagnose import decide, locate, second_truth, truth
 from guideway_fmu.diagnose.candidates import RUNNING_DISTANCE_EFFECTS, Context, PreloadLoss
 from guideway_fmu.diagnose.run_io import load_run
 from guideway_fmu.diagnose.signals import ORDER
-from guideway_fmu.physics import friction_effects as fl
+from guideway_fmu.physics.rigs import friction_laws as fl
 
 
 def test_folds_hold_out_every_usable_sample_exactly_once():
@@ -178,7 +178,7 @@ def test_correlation_time_of_ar1_noise_is_one_plus_pole_over_one_minus_pole_hand
 
 @pytest.mark.parametrize("seed", [21, 23])
 def test_steady_wear_preload_loss_gives_the_distance_at_which_the_preload_is_gone(tmp_path, seed):
-    # a null record plus the wear law of physics/friction_effects.py: the preload carries its
+    # a null record plus the wear law of physics/rigs/friction_laws.py: the preload carries its
     # share of the rig's stated load (preload + weight + normal force) and is gone after 1.5
     # times the record's running distance. Whichever law wins, the initial decay rate
     # (share n / D_loss) and the distance extrapolated from it match the truth
@@ -206,12 +206,12 @@ def test_steady_wear_preload_loss_gives_the_distance_at_which_the_preload_is_gon
 @pytest.mark.parametrize("seed, degrees, wave_radii", [(3, 1.5, 12.0), (7, 0.8, 6.0)])
 def test_ball_to_ball_rise_is_read_as_the_contact_angle_deviation_of_a_physical_row(
         tmp_path, seed, degrees, wave_radii):
-    # a null ball-guide record plus the friction of physical rows (physics/ball_row.py: packed
+    # a null ball-guide record plus the friction of physical rows (physics/ball_guides/ball_row.py: packed
     # balls, a groove wave of the given length and amplitude, the rig's load): the workflow
     # names ball-to-ball contact and its physical reading gives the amplitude to within a
     # factor 2 (the record does not fix the wave's length; it is read off the level's period)
-    from guideway_fmu.physics import ball_row
-    from guideway_fmu.physics import ball_to_ball as bb
+    from guideway_fmu.physics.ball_guides import ball_row
+    from guideway_fmu.physics.ball_guides import ball_to_ball as bb
     run = truth.simulate("none", np.random.default_rng(seed), noise=0.005, n_samples=4000)
     truth.write_run(tmp_path / "plain", run)
     measured = load_run(tmp_path / "plain")

@@ -14,14 +14,13 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from conftest import real_data_folder
 
-from guideway_fmu.physics.friction_effects import stribeck_friction
+from guideway_fmu.physics.rigs.friction_laws import stribeck_friction
 
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from guideway_fmu.diagnose.run_io import load_run
-from guideway_fmu.physics.feed_profiles import Replay, make_profile
+from guideway_fmu.physics.rigs.feed_motion import Replay, make_profile
 
 RIG = """format = "guideway-measured-run/1"
 [rig]

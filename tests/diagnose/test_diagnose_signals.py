@@ -8,8 +8,8 @@ import pytest
 from scipy.signal import savgol_coeffs, savgol_filter
 
 from guideway_fmu.diagnose import signals
-from guideway_fmu.diagnose.signals import (ORDER, Derivation, channel_noise, derive_motion, noise_rms,
-                                            rounding_noise, smooth_channel)
+from guideway_fmu.diagnose.signals import (ORDER, Derivation, channel_noise, derive_motion,
+                                           noise_rms, rounding_noise, smooth_channel)
 
 
 def test_channel_noise_of_encoder_counts_is_the_rounding_noise_by_hand():

@@ -12,9 +12,10 @@ import pytest
 from guideway_fmu.diagnose import truth_vertical, vertical
 from guideway_fmu.diagnose.run_io import load_run
 from guideway_fmu.diagnose.vertical import VerticalRig, decide_vertical
-from guideway_fmu.physics import force_table, guideway as gw
-from guideway_fmu.physics.carriage import STANDARD_GRAVITY
-from guideway_fmu.physics.roller_contact import contact_force
+from guideway_fmu.physics.rigs import force_table
+from guideway_fmu.physics.roller_guide import four_rows as gw
+from guideway_fmu.physics.roller_guide.carriage import STANDARD_GRAVITY
+from guideway_fmu.physics.roller_guide.roller_law import contact_force
 from guideway_fmu.reference import monolithic
 from guideway_fmu.reference.vertical import FusedVertical
 

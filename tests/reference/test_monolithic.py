@@ -11,7 +11,8 @@ from guideway_fmu.reference import monolithic
 from guideway_fmu.reference.verify import verify
 from guideway_fmu import scenarios
 from guideway_fmu.cosim import master, system
-from guideway_fmu.physics import carriage, feed_profiles, guideway
+from guideway_fmu.physics.roller_guide import carriage, four_rows
+from guideway_fmu.physics.rigs import feed_motion
 
 RIG_WIRING = [("Carriage.y", "Contact.y"), ("Carriage.y_dot", "Contact.y_dot"),
               ("Contact.F_contact", "Carriage.F_contact")]
@@ -39,7 +40,7 @@ def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_d
     np.testing.assert_array_equal(t, np.arange(3001) * 1e-6)
     i = np.flatnonzero(np.sign(y[:-1]) != np.sign(y[1:]))
     crossings = t[i] - y[i] * (t[i + 1] - t[i]) / (y[i + 1] - y[i])
-    k = guideway.quasi_static_stiffness(guideway.Guideway(preload=preload), 0.0, lubricated=False)
+    k = four_rows.quasi_static_stiffness(four_rows.Guideway(preload=preload), 0.0, lubricated=False)
     expected = math.sqrt(k / mass) / (2 * math.pi)
     assert len(crossings) > 30
     measured = (len(crossings) - 1) / (2 * (crossings[-1] - crossings[0]))
@@ -48,7 +49,7 @@ def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_d
 
 
 def test_start_offset_moves_every_state_by_that_fraction_of_its_nominal_scale(fmu_dir, tmp_path):
-    # independent check: the carriage's nominal scales (physics/carriage.py), 1.04e-6 m and
+    # independent check: the carriage's nominal scales (physics/roller_guide/carriage.py), 1.04e-6 m and
     # 0.043 m/s, times the offset, added to its start (y_start, at rest)
     rig = scenario(tmp_path / "dry.toml", fmu_dir, {
         "Carriage": ("VerticalDynamics", {"gravity": 0.0, "y_start": 1e-9}),
@@ -62,12 +63,12 @@ def test_start_offset_moves_every_state_by_that_fraction_of_its_nominal_scale(fm
     ("ContactEHL", "extrapolated"), ("ContactEHL", "pan_hamrock"), ("ContactDryHertz", None)])
 def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, contact, film_model):
     u, load = 0.29, 5000.0
-    g = guideway.Guideway(contact=guideway.LineContact(model=film_model or "extrapolated"))
+    g = four_rows.Guideway(contact=four_rows.LineContact(model=film_model or "extrapolated"))
     body = carriage.Carriage()
 
     def residual(y):
-        f_u, f_l, _, _ = guideway.quasi_static_state(g, y, u, lubricated=film_model is not None)
-        return body.mass * body.gravity + load - float(guideway.net_force(g, f_u, f_l))
+        f_u, f_l, _, _ = four_rows.quasi_static_state(g, y, u, lubricated=film_model is not None)
+        return body.mass * body.gravity + load - float(four_rows.net_force(g, f_u, f_l))
 
     y_eq = brentq(residual, 0.0, 1e-5, xtol=1e-22, rtol=1e-15)
     rig = scenario(tmp_path / "static.toml", fmu_dir, {
@@ -111,7 +112,7 @@ def test_film_relaxes_to_the_steady_film_at_constant_feed_velocity(fmu_dir, tmp_
         "Carriage": ("VerticalDynamics", {"load_static": 20000.0}),
     }, [("Feed.u", "Contact.u"), *RIG_WIRING], stop=5e-3, step=1e-5)
     ref = monolithic.simulate(rig)
-    _, _, h_upper, h_lower = guideway.quasi_static_state(guideway.Guideway(), ref.columns["Carriage.y"], u)
+    _, _, h_upper, h_lower = four_rows.quasi_static_state(four_rows.Guideway(), ref.columns["Carriage.y"], u)
     for h, steady in ((ref.columns["Contact.h_upper"], h_upper), (ref.columns["Contact.h_lower"], h_lower)):
         change = abs(h[-1] - h[0])
         assert change > 1e-2 * h[0]
@@ -177,20 +178,20 @@ def test_generic_assembly_horizontal_rig_drive_force_hand_calculation(fmu_dir, t
         [("Feed.u", "Friction.u"), ("Feed.a", "Rig.a"), ("Friction.F_friction", "Rig.F_friction")],
         stop=0.2, step=1e-3)
     ref = monolithic.simulate(rig)
-    _, u, a = feed_profiles.BiHarmonic().evaluate(ref.time)
+    _, u, a = feed_motion.BiHarmonic().evaluate(ref.time)
     expected = mass * a + mu * 2 * 20 * 2 * load * np.tanh(u / 1e-4) + offset
     np.testing.assert_allclose(ref.columns["Rig.drive_force"], expected, rtol=1e-12, atol=1e-9)
 
 
 @pytest.mark.parametrize("profile", [
-    feed_profiles.BiHarmonic(), feed_profiles.Oscillating(), feed_profiles.Constant(),
-    feed_profiles.Trapezoid(distance=-0.01, v_max=0.3, a_max=30.0, t_start=0.01),
-    feed_profiles.Table(time=(0.0, 0.01, 0.03, 0.04), velocity=(0.0, 0.2, -0.1, 0.05))])
+    feed_motion.BiHarmonic(), feed_motion.Oscillating(), feed_motion.Constant(),
+    feed_motion.Trapezoid(distance=-0.01, v_max=0.3, a_max=30.0, t_start=0.01),
+    feed_motion.Table(time=(0.0, 0.01, 0.03, 0.04), velocity=(0.0, 0.2, -0.1, 0.05))])
 def test_fast_feed_velocity_equals_the_profile(profile):
     """The reference's right-hand side asks the feed model for u alone (velocity_at); the
     outputs come from evaluate."""
     t = np.linspace(-0.01, 0.06, 1401)
-    model = feed_profiles.FeedModel(profile)
+    model = feed_motion.FeedModel(profile)
     fast = [model.outputs(float(s), (), {}, ("u",))["u"] for s in t]
     np.testing.assert_allclose(fast, profile.evaluate(t)[1], rtol=1e-12, atol=1e-15)
 

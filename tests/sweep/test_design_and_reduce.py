@@ -1,5 +1,4 @@
 """Designs of experiments and reduced outputs, against counts and hand calculations."""
-import itertools
 
 import numpy as np
 import pytest

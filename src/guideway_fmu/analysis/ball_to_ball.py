@@ -1,6 +1,6 @@
 """Ball-to-ball contact of two balls in a four-point contact linear ball bearing from a case
 file (``guideway-fmu ball-to-ball CASE.toml``), by the analytical and the low-order numerical
-model of Lin, Duan and Okwudire (2019); physics/ball_to_ball.py. The format is in
+model of Lin, Duan and Okwudire (2019); physics/ball_guides/ball_to_ball.py. The format is in
 docs/ball-to-ball.md.
 """
 from __future__ import annotations
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..physics import ball_to_ball as bb
+from ..physics.ball_guides import ball_to_ball as bb
 from . import input_file
 
 KEYS = {"ball": ("radius", "conformity"), "material": ("E", "nu", "friction"),

@@ -4,7 +4,7 @@
 The ball stiffnesses are given (``[balls] stiffness``, one value per ball of a row, both rows
 alike: Wu et al. 2012, Table 2) or computed: the balls' Hertz constant from ``diameter`` and
 ``conformity`` (two equal contacts in series), every ball preloaded to ``preload`` [N], the
-static equilibrium under ``[load]``, then each ball's tangent stiffness (physics/ball_carriage.py).
+static equilibrium under ``[load]``, then each ball's tangent stiffness (physics/ball_guides/carriage_5dof.py).
 """
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..physics import ball_carriage as bc
-from ..physics import hertz_point
+from ..physics.ball_guides import carriage_5dof as bc
+from ..physics.ball_guides import hertz_point
 from . import input_file
 
 LOAD_KEYS = ("force_y", "force_z", "moment_x", "moment_y", "moment_z")  # order of bc.LOADS

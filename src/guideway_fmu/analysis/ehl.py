@@ -62,8 +62,9 @@ import numpy as np
 
 from .ehl_plots import plot_distribution, plot_load_history
 from ..physics import checks
-from ..physics.ehl import (EHLConvergenceError, EHLResult, LineContactEHL, flow_factors,
-                          pan_hamrock, solve_steady, solve_transient, solver)
+from ..physics.roller_guide.ehl import (EHLConvergenceError, EHLResult, LineContactEHL,
+                                        flow_factors, pan_hamrock, solve_steady, solve_transient,
+                                        solver)
 
 RADIUS = 2.5e-3  # m, default reduced radius of ``ehl``: Soleimanian et al.'s roller on a flat raceway
 TABLE4_ROUGHNESS = 0.45e-6  # m, composite RMS roughness of Soleimanian et al. (2020) Table 4

@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from ..physics.ehl import EHLResult
+from ..physics.roller_guide.ehl import EHLResult
 
 X_RANGE = (-3.0, 2.0)  # shown part of the domain [Hertz half-widths]
 FILM_SPAN = 2.5  # film axis up to this multiple of the largest film in |x| <= b

@@ -1,7 +1,7 @@
 """The errors and stiffness of a four-slider ball-guide feed unit from a feed-unit file
 (``guideway-fmu feed-unit FEEDUNIT.toml``), with and without the contact-angle change, for one
 load or swept over the load, the load point or the contact angle (Zhang, Wang and Le 2019;
-physics/feed_unit.py). The file format is in docs/feed-unit.md.
+physics/ball_guides/feed_unit.py). The file format is in docs/feed-unit.md.
 """
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..physics import feed_unit as fu
-from ..physics import hertz_point
+from ..physics.ball_guides import feed_unit as fu
+from ..physics.ball_guides import hertz_point
 from . import input_file
 
 KEYS = {"table": ("half_span_x", "half_span_y"),

@@ -23,11 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..cosim.plots import spectrum
-from ..physics import greenwood_tripp, guideway, roller_friction
-from ..physics.feed_profiles import Oscillating
-from ..physics.film import LineContact, film_law, steady_film
-from ..physics.roller_contact import approach_for_load
+from ..numerics.spectrum import spectrum
+from ..physics.roller_guide import carriage, four_rows, friction, greenwood_tripp
+from ..physics.rigs.feed_motion import Oscillating
+from ..physics.roller_guide.film import LineContact, film_law, steady_film
+from ..physics.roller_guide.roller_law import approach_for_load
 
 PRELOAD = 9200.0  # N, Table 2
 PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, the unloaded rig
@@ -35,7 +35,7 @@ RIG_SPEED = 0.29  # m/s, amplitude of the rig's bi-harmonic feed (eq. 1a, A1 = 0
 SHARES = {"carriage": 1, "side": 2, "groove": 4}  # the 9200 N over 4 / n of the grooves
 HESS_SOOM_LOAD = 250.0  # N, the load of Hess and Soom's test in Fig. 11
 # Table 1: the surface and lubricant of the Hess and Soom comparison (Fig. 11)
-HESS_SOOM = roller_friction.MixedFrictionParams(
+HESS_SOOM = friction.MixedFrictionParams(
     surface=greenwood_tripp.Surface(asperity_density=7e9, asperity_radius=10e-6,
                                     roughness=0.45e-6, e_reduced=2e11),
     limiting_shear_stress=3.5e6, limiting_shear_slope=0.047)
@@ -59,16 +59,16 @@ class Reading:
         contact's F0 and the carriage's mass."""
         return {"Contact": {"preload": self.preload}, "Carriage": {"mass": self.mass}}
 
-    def guideway(self) -> guideway.Guideway:
-        return guideway.Guideway(preload=self.preload)
+    def guideway(self) -> four_rows.Guideway:
+        return four_rows.Guideway(preload=self.preload)
 
 
-def _stiffness(g: guideway.Guideway) -> float:
+def _stiffness(g: four_rows.Guideway) -> float:
     """Quasi-static stiffness [N/m] at rest, lubricated, at the rig's feed speed."""
-    return float(guideway.quasi_static_stiffness(g, 0.0, RIG_SPEED))
+    return float(four_rows.quasi_static_stiffness(g, 0.0, RIG_SPEED))
 
 
-def natural_frequency(g: guideway.Guideway, mass: float) -> float:
+def natural_frequency(g: four_rows.Guideway, mass: float) -> float:
     """Linearised unloaded natural frequency [Hz] at the rig's feed speed."""
     return math.sqrt(_stiffness(g) / mass) / (2 * math.pi)
 
@@ -78,15 +78,15 @@ def readings() -> list[Reading]:
     gram: a scenario states it in a few digits)."""
     omega = 2 * math.pi * PAPER_NATURAL_FREQUENCY
     return [Reading(name, PRELOAD * share,
-                    round(_stiffness(guideway.Guideway(preload=PRELOAD * share)) / omega**2, 3))
+                    round(_stiffness(four_rows.Guideway(preload=PRELOAD * share)) / omega**2, 3))
             for name, share in SHARES.items()]
 
 
-def film_to_solid_stiffness(g: guideway.Guideway) -> float:
+def film_to_solid_stiffness(g: four_rows.Guideway) -> float:
     """Ratio of a roller's film stiffness dF/dh to its solids' dF/d delta at rest, unloaded, at
     the rig's feed speed: (F / (m h)) / ((10/9) F / delta) = 9 delta / (10 m h), from the steady
     film h = C F^-m in series with Palmgren's contact."""
-    f_u, _, h_u, _ = guideway.quasi_static_state(g, 0.0, RIG_SPEED)
+    f_u, _, h_u, _ = four_rows.quasi_static_state(g, 0.0, RIG_SPEED)
     delta = float(approach_for_load(f_u, g.k))
     _, m = film_law(g.contact, RIG_SPEED)
     return 9.0 * delta / (10.0 * m * float(h_u))
@@ -122,5 +122,34 @@ def hess_soom_friction(time):
     """
     _, u, _ = Oscillating().evaluate(np.asarray(time, dtype=float))
     film = steady_film(LineContact(), HESS_SOOM_LOAD, u)
-    boundary, viscous = roller_friction.contact_friction(HESS_SOOM_LOAD, film, u, HESS_SOOM)
+    boundary, viscous = friction.contact_friction(HESS_SOOM_LOAD, film, u, HESS_SOOM)
     return u, (boundary + viscous) / HESS_SOOM_LOAD
+
+
+def rig_facts(u: float = RIG_SPEED) -> dict:
+    """k, preload approach, films and natural frequencies of Soleimanian et al. 2020's rig at y = 0, feed speed u."""
+    g, body = four_rows.Guideway(), carriage.Carriage()
+    state = four_rows.quasi_static_state(g, 0.0, u)
+    f_u, h_u = float(state[0]), float(state[2])
+    k_lub = float(four_rows.quasi_static_stiffness(g, 0.0, u, state=state))
+    k_dry = float(four_rows.quasi_static_stiffness(g, 0.0, lubricated=False))
+    pan_hamrock = LineContact(model="pan_hamrock")
+
+    def hz(k):
+        return float(np.sqrt(k / body.mass) / (2 * np.pi))
+
+    return {
+        "roller_stiffness_k_N_per_m^(10/9)": g.k,
+        "preload_per_roller_N": g.preload_per_roller,
+        "preload_approach_delta0_m": g.delta0,
+        "feed_speed_m_per_s": u,
+        "film_extrapolated_at_y0_m": h_u,
+        "film_pan_hamrock_at_y0_m": float(steady_film(pan_hamrock, f_u, u)),
+        "roller_load_at_y0_N": f_u,
+        "rail_mass_kg": body.mass,
+        "stiffness_y0_lubricated_N_per_m": k_lub,
+        "stiffness_y0_dry_N_per_m": k_dry,
+        "natural_frequency_lubricated_Hz": hz(k_lub),
+        "natural_frequency_dry_Hz": hz(k_dry),
+        "paper_natural_frequency_Hz": PAPER_NATURAL_FREQUENCY,
+    }

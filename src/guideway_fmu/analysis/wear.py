@@ -1,6 +1,6 @@
 """Raceway wear and preload loss of a linear ball guide over its running distance from a case
 file (``guideway-fmu wear CASE.toml --distance 5000``), by the fractal-creep model of Zhang, Wang
-and Jiang; physics/wear.py. The format is in docs/wear.md.
+and Jiang; physics/wear/raceway_wear.py. The format is in docs/wear.md.
 """
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..physics import fractal, wear
+from ..physics.wear import fractal, raceway_wear
 from . import input_file
 
 KEYS = {"guide": ("ball_diameter", "conformity", "balls_per_row", "contact_angle_deg",
@@ -36,7 +36,7 @@ class WearCase:
     """A guide, the vertical load F [N] on its slider, and the profile fit that gave its fractal
     parameters (None: given in the file or the defaults)."""
 
-    guide: wear.Guide
+    guide: raceway_wear.Guide
     load: float
     fit: fractal.StructureFit | None = None
 
@@ -109,14 +109,14 @@ def read_case(path) -> WearCase:
     elif {"shortest_lag", "longest_lag"} & set(surface):
         raise ValueError(f"{path}: [surface] shortest_lag and longest_lag need a profile")
     try:
-        guide = wear.Guide(**values)
+        guide = raceway_wear.Guide(**values)
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None
     load = input_file.number(path, "load", tables["load"], "vertical")
     return WearCase(guide, load, fit)
 
 
-def contact_summary(guide: wear.Guide, load: float) -> dict:
+def contact_summary(guide: raceway_wear.Guide, load: float) -> dict:
     """A ball's contact in each row of the new guide under F [N] (SI units)."""
     _, *ball_loads = guide.settle(load, guide.preload_deformation, guide.preload_deformation)
     out = {}
@@ -136,7 +136,7 @@ def contact_summary(guide: wear.Guide, load: float) -> dict:
 def analyse(case: WearCase, distance: float, points: int = 101) -> dict:
     """The slider over ``distance`` [m]: the keys of the issue's JSON and more (SI units)."""
     g = case.guide
-    history = wear.simulate(g, case.load, distance, points)
+    history = raceway_wear.simulate(g, case.load, distance, points)
     c = history.columns
     z = c["vertical_displacement"]
     surface = {"fractal_dimension": g.fractal_dimension, "scale": g.fractal_scale,
@@ -191,7 +191,7 @@ def load_sweep(case: WearCase, distance: float, loads) -> dict:
     load [N]: elastic (new guide), total (worn) and the part wear adds."""
     new, worn = [], []
     for load in loads:
-        run = wear.simulate(case.guide, float(load), distance, 2).columns["vertical_displacement"]
+        run = raceway_wear.simulate(case.guide, float(load), distance, 2).columns["vertical_displacement"]
         new.append(float(run[0]))
         worn.append(float(run[-1]))
     return {"load": [float(v) for v in loads], "elastic": new, "total": worn,
@@ -208,7 +208,7 @@ def creep_cases(case: WearCase, distance: float, points: int = 51) -> list[dict]
     out = []
     for ratio in sorted({min(f * base, 0.95) for f in (0.5, 1.0, 2.0)}):
         guide = dataclasses.replace(case.guide, tangential_ratio=ratio)
-        run = wear.simulate(guide, case.load, distance, points)
+        run = raceway_wear.simulate(guide, case.load, distance, points)
         z = run.columns["vertical_displacement"]
         out.append({"tangential_ratio": ratio,
                     "creep_rate": contact_summary(guide, case.load)["upper"]["creep_rate"],

@@ -31,8 +31,8 @@ from xml.etree import ElementTree
 from xml.etree.ElementTree import Element, SubElement
 
 from ..physics.dynamics import ContinuousModel
-from .runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave, Fmi2Status,
-                      Fmi2Variability, Integer, Real, String)
+from .runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
+                      Fmi2Status, Fmi2Variability, Integer, Real, String)
 from .units import BASE_UNITS
 
 

@@ -1,6 +1,6 @@
 """Pack a scenario's connected system into one FMI 2.0 co-simulation FMU (``export-fmu``).
 
-The FMU is built by the components' build (components/build.py ``pack``) from the slave class
+The FMU is built by the components' build (fmu_build/build.py ``pack``) from the slave class
 :class:`~.packed_fmu.PackedSystem`, whose package carries the scenario as TOML and its FMUs
 (packed_fmu.py says what the FMU's variables are and how it steps).
 """
@@ -12,7 +12,7 @@ from pathlib import Path
 
 from fmpy import read_model_description
 
-from ..components import build
+from ..fmu_build import build
 from .packed_fmu import DATA, SCENARIO, PackedSystem
 from .ssp import packed_files
 from .system import System, dump

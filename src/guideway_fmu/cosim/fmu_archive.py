@@ -1,5 +1,7 @@
-"""FMU files as zip archives: refusing entries that would land outside the folder they are
-extracted to, and copying an FMU with other start values in its modelDescription.xml."""
+"""FMU files as zip archives: rewriting one entry by entry (the one loop behind the build's
+finishing, the exit patch and FMU copies with other start values), refusing entries that would
+land outside the folder they are extracted to, and copying an FMU with other start values in its
+modelDescription.xml."""
 from __future__ import annotations
 
 import re
@@ -7,11 +9,30 @@ import stat
 import uuid
 import zipfile
 from pathlib import Path
+from typing import Callable
 from xml.etree import ElementTree as ET
 
-from ..fmu_zip import rewrite
 
 DESCRIPTION = "modelDescription.xml"
+
+
+def rewrite(source: str | Path, target: str | Path,
+            transform: Callable[[str, bytes], tuple[str, bytes]]) -> Path:
+    """Write ``target`` with every entry of the zip archive ``source`` passed through
+    ``transform(name, data) -> (name, data)``; ``target`` may be ``source`` (replaced once the
+    new archive is complete). Returns ``target``."""
+    source, target = Path(source), Path(target)
+    partial = target.with_name(target.name + ".partial")
+    try:
+        with zipfile.ZipFile(source) as src, \
+                zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as dst:
+            for info in src.infolist():
+                dst.writestr(*transform(info.filename, src.read(info)))
+    except BaseException:
+        partial.unlink(missing_ok=True)  # nothing half-written left beside the target
+        raise
+    partial.replace(target)
+    return target
 
 
 def check_entries(fmu: str | Path) -> None:

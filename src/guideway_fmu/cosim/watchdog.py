@@ -13,7 +13,7 @@ import time
 import traceback
 from typing import Callable
 
-from ..process import exit_without_finalising
+from .interrupts import exit_without_finalising
 
 STEP_TIMEOUT_STATUS = 124  # exit status after a step timeout, that of coreutils' timeout(1)
 POLL_PERIOD = 0.5  # s, longest interval between two looks at the instances

@@ -2,13 +2,13 @@
 
 Every subclass of :class:`Candidate` that names an ``effect`` registers itself in CANDIDATES, the
 one list the workflow, the truth generator and the report read: a new effect is a law in
-physics/friction_effects.py, a friction FMU in components/friction_effects.py and one class here
+physics/rigs/friction_laws.py, a friction FMU in components/rigs/friction_effects.py and one class here
 (effect name, residual signal, FMU name, law, running-distance flag, columns and physical
 parameters).
 
 Every model predicts the compared channel as a fixed part (m a for drive_force, 0 for
 friction_force) plus a linear combination of columns built from the physics laws
-(physics/friction_effects.py) plus a constant offset (the sensor zero). A candidate may have a few
+(physics/rigs/friction_laws.py) plus a constant offset (the sensor zero). A candidate may have a few
 nonlinear settings (a Stribeck velocity, a pre-sliding distance, a wear distance, a number of
 position knots); for each setting the linear coefficients are a least-squares fit on the fit
 samples, and the setting with the lowest BIC on the fit samples is kept. :meth:`Candidate.fmu`
@@ -25,9 +25,11 @@ import numpy as np
 from scipy import sparse
 from scipy.optimize import lsq_linear, minimize_scalar
 
-from ..physics import ball_row, friction_effects
-from ..physics import ball_to_ball as b2b
-from ..physics.roller_friction import CoulombParams, coulomb_friction, regularised_sign
+from ..physics.ball_guides import ball_row
+from ..physics.rigs import friction_laws
+from ..physics.ball_guides import ball_to_ball as b2b
+from ..physics.roller_guide.friction import CoulombParams, coulomb_friction
+from ..physics.dynamics import regularised_sign
 from .run_io import MeasuredRun
 from .signals import SIGN_WIDTH, Derivation, Motion, smooth_channel
 
@@ -55,7 +57,7 @@ class Context:
         self.sign = regularised_sign(self.motion.v, self.velocity_tolerance)
         _, x, _, _, at = self.motion.path()
         self.path = (x, at)
-        self.distance = friction_effects.running_distance(x)[at]
+        self.distance = friction_laws.running_distance(x)[at]
         self.load, self.load_how = (smooth_channel(self.motion.time, self.run.columns["normal_force"])
                                     if "normal_force" in self.run.columns else (None, None))
 
@@ -260,7 +262,7 @@ class Lubrication(Candidate):
     """Stribeck + viscous friction; settings: Stribeck velocity, shape and viscous exponents."""
 
     effect, signal, fmu_name = "lubrication", "speed", "FrictionStribeck"
-    law = staticmethod(friction_effects.stribeck_friction)
+    law = staticmethod(friction_laws.stribeck_friction)
     continuous = ("stribeck_velocity",)
 
     def settings(self, ctx):
@@ -293,7 +295,7 @@ class PreslidingHysteresis(Candidate):
 
     effect, signal, fmu_name, uses_position = ("presliding_hysteresis", "displacement_since_reversal",
                                                "FrictionDahl", True)
-    law = staticmethod(friction_effects.dahl_friction)
+    law = staticmethod(friction_laws.dahl_friction)
     continuous = ("presliding_distance", "second_distance", "third_distance")
     keys = continuous
     _states: tuple = ()
@@ -321,11 +323,11 @@ class PreslidingHysteresis(Candidate):
     def state(self, ctx, distance):
         if not self._states or self._states[0] is not ctx:
             d = self.distances(ctx)
-            z = friction_effects.dahl_state(ctx.path[0], d, self.z_start(ctx))[ctx.path[1]]
+            z = friction_laws.dahl_state(ctx.path[0], d, self.z_start(ctx))[ctx.path[1]]
             self._states = (ctx, {float(v): z[:, i] for i, v in enumerate(d)})
         cache = self._states[1]
         if distance not in cache:  # off the grid (refinement)
-            cache[distance] = friction_effects.dahl_state(ctx.path[0], distance,
+            cache[distance] = friction_laws.dahl_state(ctx.path[0], distance,
                                                           self.z_start(ctx))[ctx.path[1]]
         return cache[distance]
 
@@ -378,7 +380,7 @@ class _Table(Candidate):
     """Coulomb level times a factor interpolated between equally spaced nodes of a signal;
     settings: the number of nodes."""
 
-    law = staticmethod(friction_effects.position_dependent_friction)
+    law = staticmethod(friction_laws.position_dependent_friction)
 
     def along(self, ctx) -> np.ndarray:
         """The signal the table is over, at the samples."""
@@ -451,7 +453,7 @@ class UnmodeledMass(Candidate):
 
 class PreloadLoss(Candidate):
     """Coulomb level drifting down with the running distance, by a law of
-    :func:`friction_effects.preload_loss_factor`: the empirical exponential decay, wear taking
+    :func:`friction_laws.preload_loss_factor`: the empirical exponential decay, wear taking
     the preload away at a steady rate (its share of the level following Q_0 ~ delta_0^n, n by
     the [guideway] type), or any monotone loss (table: the level piecewise linear over equally
     spaced distances, never rising, fitted by bounded least squares; its parameters counted
@@ -463,7 +465,7 @@ class PreloadLoss(Candidate):
 
     effect, signal, fmu_name, uses_position = ("preload_loss", "running_distance",
                                                "FrictionPreloadLoss", True)
-    law = staticmethod(friction_effects.preload_loss_friction)
+    law = staticmethod(friction_laws.preload_loss_friction)
     running_distance = True
     continuous = ("wear_distance",)
     TABLE_NODES = (3, 4, 5, 7, 9, 12, 17)  # node counts of the monotone table, about sqrt 2 apart
@@ -559,7 +561,7 @@ class BallToBall(_Table):
 
     effect, signal, fmu_name, uses_position = ("ball_to_ball_contact", "running_distance",
                                                "FrictionBallToBall", True)
-    law = staticmethod(friction_effects.ball_to_ball_friction)
+    law = staticmethod(friction_laws.ball_to_ball_friction)
     running_distance = True
     guide_types = ("ball",)
     nests = ("preload_loss",)  # a free table over the running distance holds any monotone drift
@@ -591,12 +593,12 @@ class BallToBall(_Table):
     def interpret(self, ctx, fit) -> dict:
         """The ball-to-ball friction the fit shows (the mean rise of the level over its lowest
         node [N]) and the contact-angle deviation [deg] that gives it in the physical model:
-        each of the [guideway] rows a row of balls (physics/ball_row.py), packed against the
+        each of the [guideway] rows a row of balls (physics/ball_guides/ball_row.py), packed against the
         load zone's rear end, whose grooves' contact angles wave (BL sine, BR cosine) with the
         length the level shows (:meth:`wavelength`), run along the record's motion; its friction grows in
         proportion to the amplitude, so one probe amplitude scales to the fitted rise. Empty
         where nothing rose."""
-        factors = friction_effects.parse_factors(fit.fmu_parameters["factors"])
+        factors = friction_laws.parse_factors(fit.fmu_parameters["factors"])
         rise = fit.parameters["coulomb"] * float(factors.mean() - factors.min())
         guideway = ctx.run.sections["guideway"]
         if rise <= 0.0:

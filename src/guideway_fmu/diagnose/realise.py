@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..components import build
+from ..fmu_build import build
 from ..cosim import master, system as cosim_system
 from . import locate
 from .candidates import Context, Fit

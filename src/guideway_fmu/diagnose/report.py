@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import html_page
+from ..output import pages
 from . import locate, plots
 from .candidates import CANDIDATES
 from .decide import Naming
@@ -75,18 +75,18 @@ def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> 
                              for k, v in c["parameters"].items()))
                   for c in d["candidates"]]
     parts = [f"<h1>Diagnosis of {html.escape(notes['run'])}</h1>",
-             html_page.table(verdict, ["", ""]),
+             pages.table(verdict, ["", ""]),
              "<h2>Candidates (scored on held-out samples, cross-validated over 3 folds; "
              "parameters and held-out gap of fold 1)</h2>",
-             html_page.table(candidates, ["effect", "score", "held-out gap", "parameters"])]
+             pages.table(candidates, ["effect", "score", "held-out gap", "parameters"])]
     for title, entries in notes["sections"].items():
         parts.append(f"<h2>{html.escape(title)}</h2>")
-        parts.append(html_page.table(list(entries.items()), ["", ""]))
+        parts.append(pages.table(list(entries.items()), ["", ""]))
     for image in images:
         data = base64.b64encode(image.read_bytes()).decode("ascii")
         parts.append(f"<h3>{html.escape(image.stem.replace('_', ' '))}</h3>"
-                     + html_page.figure(f"data:image/png;base64,{data}", image.stem))
-    path.write_text(html_page.page("diagnosis", parts), encoding="utf-8")
+                     + pages.figure(f"data:image/png;base64,{data}", image.stem))
+    path.write_text(pages.page("diagnosis", parts), encoding="utf-8")
     return path
 
 

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..physics.carriage import STANDARD_GRAVITY
+from ..physics.roller_guide.carriage import STANDARD_GRAVITY
 from . import plausible
 FORMAT = "guideway-measured-run/1"
 KINDS = ("horizontal_drive", "vertical_response")

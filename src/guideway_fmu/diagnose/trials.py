@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..process import exit_without_finalising
+from ..cosim.interrupts import exit_without_finalising
 from . import truth
 from .workflow import diagnose
 
@@ -72,4 +72,4 @@ def main(argv=None) -> None:
 
 if __name__ == "__main__":
     main()
-    exit_without_finalising(0)  # the child has loaded FMUs (guideway_fmu.process)
+    exit_without_finalising(0)  # the child has loaded FMUs (guideway_fmu.cosim.interrupts)

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 from scipy.signal import lfilter
 
-from ..physics.film import LineContact
+from ..physics.roller_guide.film import LineContact
 from .run_io import FORMAT, load_run
 from .vertical import VerticalRig
 

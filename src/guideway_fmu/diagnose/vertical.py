@@ -58,19 +58,19 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from ..components import build
+from ..fmu_build import build
 from ..cosim import master, system as cosim_system
-from ..physics import guideway as gw
-from ..physics import guideway_contact
-from ..physics.carriage import LENGTH_SCALE, STANDARD_GRAVITY
-from ..physics.film import LineContact
-from ..physics.force_table import ForceTable
-from ..physics.roller_contact import EXPONENT, MICRON, palmgren_stiffness
+from ..physics.roller_guide import four_rows as gw
+from ..physics.roller_guide import contact_model
+from ..physics.roller_guide.carriage import LENGTH_SCALE, STANDARD_GRAVITY
+from ..physics.roller_guide.film import LineContact
+from ..physics.rigs.force_table import ForceTable
+from ..physics.roller_guide.roller_law import EXPONENT, MICRON, palmgren_stiffness
 from ..reference.vertical import FusedVertical
 from ..scenarios import couple_contact
 from . import locate, regression
-from .decide import EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _bic, \
-    _confidence, significant_gap
+from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _bic, _confidence,
+                     significant_gap)
 from .realise import write_replay
 from .run_io import MeasuredRun
 from .signals import channel_noise, denoise_spectrum, derive_motion
@@ -227,7 +227,7 @@ class VerticalRig:
                                       float(self.motion.v[0]), setting.contact == "ehl")
 
     def guideway(self, setting: Setting) -> gw.Guideway:
-        return guideway_contact.from_parameters(
+        return contact_model.from_parameters(
             **self.contact_parameters(setting), damping=0.0,
             lubricated=setting.contact == "ehl").guideway
 

@@ -88,3 +88,15 @@ def rk4_step(model: ContinuousModel, t: float, state, inputs: dict, h: float):
     k3 = np.asarray(model.derivatives(t + h / 2, y + h / 2 * k2, inputs))
     k4 = np.asarray(model.derivatives(t + h, y + h * k3, inputs))
     return y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+
+
+def regularised_sign(u, velocity_tolerance: float):
+    """s(u) = tanh(u / velocity_tolerance) [-], or sign(u) when velocity_tolerance == 0.
+
+    A regularised Coulomb switch, shared by the friction laws of every system: friction passes continuously through velocity reversals
+    (and is zero at u = 0, i.e. there is no stiction) instead of jumping by twice its value.
+    """
+    u = np.asarray(u, dtype=float)
+    if velocity_tolerance > 0.0:
+        return np.tanh(u / velocity_tolerance)
+    return np.sign(u)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..cosim.plots import peak_indices, spectrum
+from ..numerics.spectrum import peak_indices, spectrum
 
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
 PEAKS = 3  # spectral peaks compared

@@ -8,10 +8,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..physics.guideway_contact import OUTPUTS
+from ..physics.roller_guide.contact_model import OUTPUTS
 
 FOLDER = Path(__file__).resolve().parent
-#: the contact's force law over a step (roller_contact.OpposedRows), handed to the carriage
+#: the contact's force law over a step (roller_law.OpposedRows), handed to the carriage
 LAW = tuple(name for name in OUTPUTS if name.startswith("law_"))
 
 
@@ -57,6 +57,6 @@ def fmu_folder(path: Path, fmus: str | Path | None) -> Path | None:
     """The FMU folder the scenario file ``path`` runs with: ``fmus`` when given, ``./fmus``
     (built where missing) for a shipped scenario, else None (the FMU paths in the file)."""
     if fmus is None and is_shipped(path):
-        from ..components import build
+        from ..fmu_build import build
         return build.ensure(Path("fmus"))
     return None if fmus is None else Path(fmus)

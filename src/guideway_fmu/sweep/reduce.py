@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import trapezoid
 
-from ..cosim.plots import spectrum, uniform_grid
+from ..numerics.spectrum import spectrum, uniform_grid
 from ..cosim.recording import Recording
 
 

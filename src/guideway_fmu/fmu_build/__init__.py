@@ -1,0 +1,5 @@
+"""Building the FMU files: ``build`` (pythonfmu, a private copy of the code per FMU, the
+modelDescription completed, fmus/README.md), ``exit_patch`` (pythonfmu 0.7's binary made safe at
+process exit), ``host_env`` (the environment a C host needs) and ``c_host.c`` (a minimal C host
+that checks it).
+"""

@@ -1,0 +1,194 @@
+"""Build the guideway FMUs with pythonfmu and document their variables.
+
+Each FMU carries the modules of this package its component imports (found by
+:mod:`modulefinder`) and the pythonfmu runtime it was built with, so it runs wherever the host
+Python has numpy and scipy. A pythonfmu FMU puts its resources on the process-wide ``sys.path``,
+so the copy is renamed ``guideway_fmu_<FMU>_<hash>`` (hash of the code it carries) and the slave
+script ``<FMU>_<hash>.py``; the runtime sits inside that package (``_pythonfmu``, see
+:mod:`guideway_fmu.components.runtime`). FMUs of different kinds or built from different code never import each
+other's modules or runtime, and an FMU whose extracted folder was deleted by its host cannot break
+the next one.
+"""
+from __future__ import annotations
+
+import hashlib
+import modulefinder
+import re
+import shutil
+import sys
+import tempfile
+import zipfile
+from pathlib import Path
+
+import pythonfmu
+from fmpy import read_model_description
+from pythonfmu.builder import FmuBuilder
+
+from ..components import registry, runtime
+from ..cosim.fmu_archive import rewrite
+from . import exit_patch
+
+RUNTIME = runtime.__name__  # shipped with every FMU, which imports it first (SLAVE_SCRIPT)
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
+SLAVE_SCRIPT = '''"""pythonfmu entry point of {name}."""
+import sys
+import traceback
+
+try:
+    from {package}.components.runtime import hold_namespace
+    from {package}.{module} import {name}
+except BaseException:
+    print("FMU {name} cannot import its code; a C host needs the environment that "
+          "`guideway-fmu host-env` prints:", file=sys.stderr)
+    traceback.print_exc()
+    raise
+hold_namespace(globals())
+'''
+
+
+def shipped_files(cls: type) -> list[Path]:
+    """The package's source files an FMU of component class ``cls`` needs (its imports, closed)."""
+    finder = modulefinder.ModuleFinder(path=[str(PACKAGE_DIR.parent)])
+    for module in (cls.__module__, RUNTIME):
+        finder.import_hook(module)
+    files = {Path(m.__file__) for m in finder.modules.values() if m.__file__}
+    return sorted(f for f in files if f.is_relative_to(PACKAGE_DIR))
+
+
+def code_hash(files: list[Path], data: dict[str, Path] | None = None) -> str:
+    """Short hash of the code an FMU ships (``files`` and the runtime's version) and of the
+    ``data`` files it carries (name in its package -> file)."""
+    digest = hashlib.sha256(pythonfmu.__version__.encode())
+    for path in files:
+        digest.update(str(path.relative_to(PACKAGE_DIR)).encode())
+        digest.update(path.read_bytes())
+    for name, path in sorted((data or {}).items()):
+        digest.update(name.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:10]
+
+
+def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[Path]:
+    """Build the named FMUs (default: all, the extensions included) into ``out_dir`` and write
+    its README.md (every FMU in the folder)."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    classes = [registry.component(n) for n in (registry.names() if names is None else names)]
+    built = pack([(cls, out_dir / f"{cls.__name__}.fmu") for cls in classes])
+    write_readme(out_dir, sorted(out_dir.glob("*.fmu")))
+    return built
+
+
+def pack(slaves: list[tuple[type, Path]], data: dict[str, Path] | None = None,
+         handle_state: bool = True) -> list[Path]:
+    """Build an FMU of each (slave class of this package, destination file): its package copy
+    ``guideway_fmu_<class>_<hash>`` holds the modules the class imports and the ``data`` files
+    (path inside the package -> file), the runtime moved in and the binary patched (module doc);
+    ``handle_state``: whether it declares canGetAndSetFMUstate."""
+    built, tags = [], []
+    with tempfile.TemporaryDirectory(prefix="guideway_fmu_build_") as tmp:
+        tmp = Path(tmp)
+        sys.path.insert(0, str(tmp))
+        try:
+            for cls, dest in slaves:
+                name = cls.__name__
+                files = shipped_files(cls)
+                tag = code_hash(files, data)
+                tags.append(tag)
+                _forget([tag])  # an FMU of this code loaded in this process: import the copy
+                package = tmp / f"guideway_fmu_{name}_{tag}"
+                copies = {path.relative_to(PACKAGE_DIR): path for path in files}
+                copies.update({Path(entry): path for entry, path in (data or {}).items()})
+                for entry, path in copies.items():
+                    target = package / entry
+                    target.parent.mkdir(parents=True, exist_ok=True)
+                    shutil.copy2(path, target)
+                script = tmp / f"{name}_{tag}.py"
+                module = cls.__module__.split(".", 1)[1]
+                script.write_text(SLAVE_SCRIPT.format(name=name, package=package.name,
+                                                      module=module))
+                fmu = FmuBuilder.build_FMU(script, dest=dest, project_files=[package],
+                                           canGetAndSetFMUstate=handle_state)
+                built.append(_finish(Path(fmu), package.name))
+        finally:
+            sys.path.remove(str(tmp))
+            _forget(tags)
+    return built
+
+
+def _forget(tags: list[str]) -> None:
+    """Drop the modules of the packages and slave scripts with these code hashes from
+    ``sys.modules`` (an FMU instance keeps its own; its next instantiation imports them anew)."""
+    for module in [m for m in sys.modules if any(tag in m for tag in tags)]:
+        del sys.modules[module]
+
+
+def _finish(fmu: Path, package: str) -> Path:
+    """Move the pythonfmu runtime the builder put in ``resources/pythonfmu`` (shared by every
+    pythonfmu FMU of a process) into the FMU's own package as ``_pythonfmu``, and make the Linux
+    binary safe at exit (:mod:`.exit_patch`); returns ``fmu``."""
+    shared, private = "resources/pythonfmu/", f"resources/{package}/_pythonfmu/"
+
+    def finish(name: str, data: bytes) -> tuple[str, bytes]:
+        if name.startswith(shared):
+            name = private + name[len(shared):]
+        return exit_patch.patch_entry(name, data)
+
+    return rewrite(fmu, fmu, finish)
+
+
+def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:
+    """Build the FMUs among ``names`` (default: all) that ``out_dir`` lacks or holds built from
+    other code than this package's (their slave script's hash differs: the package changed since
+    they were built); an FMU of that name that this build did not make (a user's replacement) is
+    left alone. Returns out_dir."""
+    out_dir = Path(out_dir)
+    wanted = registry.names() if names is None else list(dict.fromkeys(names))
+    stale = [n for n in wanted if built_tag(out_dir / f"{n}.fmu") not in (
+        code_hash(shipped_files(registry.component(n))), FOREIGN)]
+    for name in stale:
+        if (out_dir / f"{name}.fmu").is_file():
+            print(f"rebuilding {out_dir / name}.fmu: it was built from other code than this "
+                  "package's", file=sys.stderr)
+    if stale:
+        build(out_dir, stale)
+    return out_dir
+
+
+FOREIGN = "foreign"  # built_tag of an FMU this build did not make
+
+
+def built_tag(fmu: Path) -> str | None:
+    """The code hash an FMU of this build carries (its slave script ``resources/<name>_<hash>.py``),
+    None when the file is missing, FOREIGN when it is an FMU of another origin."""
+    if not fmu.is_file():
+        return None
+    script = re.compile(rf"resources/{re.escape(fmu.stem)}_([0-9a-f]{{10}})\.py")
+    try:
+        with zipfile.ZipFile(fmu) as archive:
+            tags = [m.group(1) for m in map(script.fullmatch, archive.namelist()) if m]
+    except zipfile.BadZipFile:
+        return FOREIGN
+    return tags[0] if len(tags) == 1 else FOREIGN
+
+
+def write_readme(out_dir: Path, fmus: list[Path]) -> Path:
+    """Write ``out_dir/README.md``: every FMU's variables with causality, unit, start and meaning."""
+    lines = ["# FMUs", "",
+             "Generated by `guideway-fmu build` from the FMUs' modelDescription.xml; do not edit.",
+             "All FMUs are FMI 2.0 co-simulation, built with pythonfmu: they run in the host's Python",
+             "interpreter, which must provide numpy and scipy (a C host needs the environment",
+             "`guideway-fmu host-env` prints).", ""]
+    for path in fmus:
+        md = read_model_description(str(path))
+        lines += [f"## {md.modelName}", "", md.description or "", "",
+                  "| variable | causality | type | unit | start | description |",
+                  "| --- | --- | --- | --- | --- | --- |"]
+        order = {"parameter": 0, "input": 1, "output": 2}
+        for v in sorted(md.modelVariables, key=lambda v: order.get(v.causality, 3)):
+            lines.append(f"| `{v.name}` | {v.causality} | {v.type} | {v.unit or ''} | "
+                         f"{'' if v.start is None else v.start} | {v.description or ''} |")
+        lines.append("")
+    readme = out_dir / "README.md"
+    readme.write_text("\n".join(lines))
+    return readme

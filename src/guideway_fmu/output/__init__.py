@@ -1,0 +1,1 @@
+"""What the commands write for a person to read beside their data: static HTML pages (``pages``)."""

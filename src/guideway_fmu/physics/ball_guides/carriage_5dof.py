@@ -1,0 +1,332 @@
+"""A ball-guide carriage as a rigid body on ball springs, five degrees of freedom (Wu et al. 2012,
+eqs. 9-22 and A1-A29), SI units.
+
+Coordinates q = (u, v, phi, theta, psi): lateral u along y [m], vertical v along z [m], roll
+phi about x, pitch theta about y, yaw psi about z [rad]; x is the direction of travel, the
+origin the carriage's centre of mass. Two rows of balls (left 1, right 2) lie at the contact
+angle beta, the contact points at d from the x-y plane and e from the x-z plane; ball i of each
+row sits at l_i along x. The approach of ball i grows with the carriage's motion as (eq. A3)
+
+    delta_1i = (u - d phi + l_i psi) cos beta + (-v - e phi + l_i theta) sin beta
+    delta_2i = -(u - d phi + l_i psi) cos beta + (-v + e phi + l_i theta) sin beta
+
+i.e. delta = g . q with one row g of :func:`contact_directions` per ball. With normal ball
+stiffnesses k the stiffness matrix is K = sum k g g^T, whose entries are the paper's c_21..c_29
+(eqs. 14, 22, A12, A20), and the free vibration solves K phi = omega^2 M phi with
+M = diag(m, m, J_x, J_y, J_z) (eqs. A5-A9, here as one generalized eigenproblem). The
+u-phi-psi block of two rows is singular: the lateral shift with the roll about the rows'
+contact lines' crossing point stretches no ball (omega_20 = 0, eq. A13), a rigid-body mode.
+
+:class:`HertzBalls` computes the stiffnesses the paper lists in its Table 2: every ball carries
+the preload Q_0 at rest (approach delta_0 = (Q_0 / K_h)^(2/3)); under the external load
+F = (F_y, F_z, M_x, M_y, M_z) the carriage settles where sum (Q_i - Q_0) g_i = F with
+Q_i = K_h max(delta_0 + g_i . q, 0)^1.5 (the preload is reacted inside the guide), and each
+ball's tangent stiffness is 1.5 K_h delta_i^0.5 (eq. 8). A ball whose approach falls to 0 has
+lost contact: it carries and stiffens nothing.
+
+:class:`BallCarriageModel` is the carriage as a continuous-time model for time simulation:
+states q and dq/dt, inputs the external force vector and the feed velocity (the balls roll
+along the load zone at half of it, so their positions shift through one pitch per two pitches of
+travel, which modulates the stiffness at the ball-passage frequency).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import eigh
+from scipy.optimize import root
+
+from .. import checks
+from . import hertz_point
+from ..dynamics import ContinuousModel
+
+DOF = ("u", "v", "phi", "theta", "psi")
+LOADS = ("F_y", "F_z", "M_x", "M_y", "M_z")  # generalized forces conjugate to DOF [N, N m]
+#: mode names of the dominant coordinates (Wu et al. 2012, Fig. 3): u and phi make rolling
+MOTION = {"u": "rolling", "phi": "rolling", "v": "vertical", "theta": "pitching", "psi": "yawing"}
+LABEL_SHARE = 0.1  # a coordinate names a mode when it holds this share of its kinetic energy
+
+
+@dataclass(frozen=True)
+class CarriageBody:
+    """Mass [kg], inertia (J_x, J_y, J_z) [kg m^2], contact angle beta [rad] and the contact
+    points' distances d (from the x-y plane) and e (from the x-z plane) [m]."""
+
+    mass: float
+    inertia: tuple[float, float, float]
+    contact_angle: float
+    d: float
+    e: float
+
+    def __post_init__(self):
+        checks.positive("mass", self.mass)
+        if len(self.inertia) != 3:
+            raise ValueError(f"inertia must be [J_x, J_y, J_z], got {self.inertia!r}")
+        checks.positive("inertia", np.asarray(self.inertia, dtype=float))
+        if not 0.0 < self.contact_angle < np.pi / 2:
+            raise ValueError(f"contact_angle must lie in (0, 90) degrees, got "
+                             f"{np.degrees(self.contact_angle)!r}")
+        checks.finite("d", self.d)
+        checks.finite("e", self.e)
+
+    def mass_matrix(self) -> np.ndarray:
+        """diag(m, m, J_x, J_y, J_z)."""
+        return np.diag([self.mass, self.mass, *self.inertia])
+
+
+def ball_positions(per_row: int, pitch: float, shift: float = 0.0) -> np.ndarray:
+    """l_i [m] of ``per_row`` balls ``pitch`` [m] apart, centred on the carriage (eq. 13 with the
+    load zone l_L = per_row * pitch); ``shift`` [m] moves them along x, wrapped into the load zone."""
+    checks.positive_integer("per_row", per_row)
+    checks.positive("pitch", pitch)
+    zone = per_row * pitch
+    centred = (per_row - 2 * np.arange(1, per_row + 1) + 1) / 2.0 * pitch
+    return (centred + shift + zone / 2.0) % zone - zone / 2.0
+
+
+def contact_directions(body: CarriageBody, positions) -> np.ndarray:
+    """(2 n, 5) matrix G whose row g gives a ball's approach g . q (eq. A3): row 1, then row 2."""
+    l = np.asarray(positions, dtype=float)
+    c, s = np.cos(body.contact_angle), np.sin(body.contact_angle)
+    arm = body.d * c + body.e * s
+    one = np.ones_like(l)
+    left = np.column_stack([c * one, -s * one, -arm * one, l * s, l * c])
+    right = np.column_stack([-c * one, -s * one, arm * one, l * s, -l * c])
+    return np.vstack([left, right])
+
+
+def stiffness_matrix(directions: np.ndarray, ball_stiffness) -> np.ndarray:
+    """K = sum k g g^T [N/m, N, N m] from each ball's normal stiffness k [N/m]."""
+    k = np.asarray(ball_stiffness, dtype=float)
+    return directions.T @ (k[:, None] * directions)
+
+
+@dataclass(frozen=True)
+class Modes:
+    """Natural frequencies [Hz] in ascending order, mass-normalised shapes (columns, over DOF)
+    and each mode's kinetic-energy share per coordinate (rows sum to 1)."""
+
+    frequencies: np.ndarray
+    shapes: np.ndarray
+    participation: np.ndarray
+
+    def label(self, index: int) -> str:
+        """'rigid' for a zero mode, else the motions of the coordinates holding LABEL_SHARE of
+        its energy, dominant first (e.g. 'pitching-vertical')."""
+        if self.frequencies[index] == 0.0:
+            return "rigid"
+        share = self.participation[index]
+        names = []
+        for j in np.argsort(-share):
+            if share[j] >= LABEL_SHARE and MOTION[DOF[j]] not in names:
+                names.append(MOTION[DOF[j]])
+        return "-".join(names)
+
+
+def modes(stiffness: np.ndarray, mass: np.ndarray) -> Modes:
+    """Solve K phi = omega^2 M phi (scipy.linalg.eigh). Eigenvalues within 1e-9 of the largest
+    (round-off of a singular K) count as rigid-body modes, frequency 0."""
+    values, shapes = eigh(stiffness, mass)
+    values = np.where(values > 1e-9 * values.max(), values, 0.0)
+    energy = np.diag(mass)[:, None] * shapes**2
+    return Modes(np.sqrt(values) / (2 * np.pi), shapes, (energy / energy.sum(axis=0)).T)
+
+
+def paper_frequencies(body: CarriageBody, positions, row_stiffness) -> dict:
+    """Wu et al.'s closed forms (eqs. 19-22) [Hz] for per-row ball stiffnesses K_ni [N/m] used
+    in both rows: f_RYL, f_PVL, f_PVH, f_RYH (with equal K_ni: f_Y, f_P, f_V, f_R)."""
+    l, k = np.asarray(positions, dtype=float), np.asarray(row_stiffness, dtype=float)
+    c, s = np.cos(body.contact_angle), np.sin(body.contact_angle)
+    m, (jx, jy, jz) = body.mass, body.inertia
+    arm = body.d * c + body.e * s
+    c21, c22, c23 = (np.sum(k * 2 * c**2), np.sum(k * -2 * c * arm), np.sum(k * 2 * arm**2))
+    c24, c25, c26 = np.sum(k * 2 * l * c**2), np.sum(k * 2 * l**2 * c**2), np.sum(k * -2 * l * c * arm)
+    c27, c28, c29 = np.sum(k * 2 * s**2), np.sum(k * -2 * l * s**2), np.sum(k * 2 * l**2 * s**2)
+    a1 = -(c21 * jx * jz + c23 * m * jz + c25 * m * jx)
+    a2 = -(c24**2 * jx + c26**2 * m + c22**2 * jz - c23 * c25 * m - c21 * c25 * jx - c21 * c23 * jz)
+    root_ry = np.sqrt(a1**2 - 4 * a2 * m * jx * jz)
+    pv = c29 * m + c27 * jy
+    root_pv = np.sqrt(pv**2 - 4 * m * jy * (c27 * c29 - c28**2))
+    omega2 = {"f_RYL": (-a1 - root_ry) / (2 * m * jx * jz), "f_PVL": (pv - root_pv) / (2 * m * jy),
+              "f_PVH": (pv + root_pv) / (2 * m * jy), "f_RYH": (-a1 + root_ry) / (2 * m * jx * jz)}
+    return {name: float(np.sqrt(w2) / (2 * np.pi)) for name, w2 in omega2.items()}
+
+
+class HertzBalls:
+    """Preloaded Hertz balls in both rows: loads, stiffnesses and the static equilibrium."""
+
+    def __init__(self, body: CarriageBody, positions, k_h: float, preload: float):
+        self.body = body
+        self.directions = contact_directions(body, positions)
+        self.k_h = checks.positive("k_h", k_h)
+        self.preload = float(checks.non_negative("preload", preload))
+        self.rest = float(hertz_point.approach(k_h, preload))
+
+    def approaches(self, q) -> np.ndarray:
+        """delta_i [m] of every ball (row 1, then row 2) at the displacement q."""
+        return self.rest + self.directions @ np.asarray(q, dtype=float)
+
+    def loads(self, q) -> np.ndarray:
+        """Q_i [N] of every ball."""
+        return hertz_point.load(self.k_h, self.approaches(q))
+
+    def ball_stiffness(self, q) -> np.ndarray:
+        """Tangent normal stiffness of every ball [N/m] (0 where contact is lost)."""
+        return hertz_point.stiffness(self.k_h, self.approaches(q))
+
+    def restoring(self, q) -> np.ndarray:
+        """Generalized force of the balls on the carriage, -sum (Q_i - Q_0) g_i."""
+        return -self.directions.T @ (self.loads(q) - self.preload)
+
+    def tangent(self, q) -> np.ndarray:
+        """Tangent stiffness matrix sum k_i g_i g_i^T at q."""
+        return stiffness_matrix(self.directions, self.ball_stiffness(q))
+
+    def equilibrium(self, external) -> np.ndarray:
+        """q where the balls balance ``external`` (F_y, F_z, M_x, M_y, M_z). The rigid-body
+        direction of two rows (no ball resists it) is held at 0: the displacement is sought in
+        the complement of the unloaded K's null space. ValueError if the load drives that
+        direction, or if the balls cannot carry it."""
+        f = np.asarray(external, dtype=float)
+        if self.preload == 0.0:
+            raise ValueError("preload must be > 0 for the start in static equilibrium (unpreloaded "
+                             "balls have no stiffness at rest)")
+        values, vectors = np.linalg.eigh(self.tangent(np.zeros(5)))
+        free = values > 1e-9 * values.max()
+        basis, rigid = vectors[:, free], vectors[:, ~free]
+        scale = max(float(np.abs(f).max()), self.preload)
+        if np.any(np.abs(rigid.T @ f) > 1e-9 * scale):
+            raise ValueError(f"the load {f.tolist()} (F_y, F_z, M_x, M_y, M_z) drives the motion "
+                             f"no ball resists (lateral shift with roll); balance it")
+
+        def residual(z):
+            return basis.T @ (self.restoring(basis @ z) + f)
+
+        def jacobian(z):
+            return -basis.T @ self.tangent(basis @ z) @ basis
+
+        rest = -jacobian(np.zeros(basis.shape[1]))
+        start = np.linalg.solve(rest, basis.T @ f)  # the linear answer
+        found = root(residual, start, jac=jacobian, method="hybr")
+        # judged by the residual: at round-off hybr may report slow progress on a solution
+        if np.max(np.abs(residual(found.x))) > 1e-9 * scale:
+            raise ValueError(f"no static equilibrium under the load {f.tolist()} (F_y, F_z, M_x, "
+                             f"M_y, M_z): more than the balls can carry")
+        return basis @ found.x
+
+
+class BallCarriageModel(ContinuousModel):
+    """The carriage in time: states q, dq/dt (DOF order) and the balls' shift s [m] along x;
+    inputs the generalized loads LOADS, the feed velocity u_feed [m/s] (ds/dt = u_feed / 2) and
+    the balls' preload [N] (a ball's load at rest; it may change during a run, as raceway wear
+    takes it away).
+
+    M d2q/dt2 = F + F_0 + R(q, s) - C(q, s) dq/dt, with F_0 the ``static_load`` (LOADS order),
+    R the balls' restoring force and C = sum c g g^T over the balls in contact (``ball_damping``
+    c [N s/m] per ball). With ``k_h`` (Hertz balls) the springs are nonlinear Hertz balls that
+    may lose contact; with ``ball_stiffness`` (one value per ball of a row, used for both rows)
+    they are linear and the preload plays no part.
+    Outputs: q, dq/dt and each row's total normal ball load (with linear springs, its change
+    from rest) [N]."""
+
+    inputs = LOADS + ("u_feed", "preload")
+    states = (*DOF, *(f"{n}_dot" for n in DOF), "ball_shift")
+
+    def __init__(self, body: CarriageBody, per_row: int, pitch: float, *, k_h=None,
+                 ball_stiffness=None, ball_damping: float = 0.0, static_load=(0.0,) * 5):
+        self.body, self.per_row, self.pitch = body, per_row, pitch
+        self.static_load = np.asarray(checks.finite("static_load", static_load), dtype=float)
+        ball_positions(per_row, pitch)  # checks per_row and pitch
+        if (ball_stiffness is None) == (k_h is None):
+            raise ValueError("give either ball_stiffness or the Hertz constant")
+        if ball_stiffness is not None:
+            k = checks.positive("ball_stiffness", np.asarray(ball_stiffness, dtype=float))
+            if k.shape != (per_row,):
+                raise ValueError(f"ball_stiffness needs {per_row} values (per_row), got {k.size}")
+            self.linear = np.concatenate([k, k])
+        else:
+            self.linear = None
+            self.k_h = checks.positive("k_h", k_h)
+        self.damping = checks.non_negative("ball_damping", ball_damping)
+        self.mass = np.diag(body.mass_matrix())
+
+    def balls(self, shift: float, preload: float):
+        """(directions, loads(q), stiffness(q)) of the balls at the shift [m] and preload [N]."""
+        positions = ball_positions(self.per_row, self.pitch, shift)
+        if self.linear is not None:
+            g = contact_directions(self.body, positions)
+            return g, lambda q: self.linear * (g @ q), lambda q: self.linear
+        hertz = HertzBalls(self.body, positions, self.k_h, preload)
+        return hertz.directions, hertz.loads, hertz.ball_stiffness
+
+    def rest_loads(self, preload: float) -> float:
+        """Q_0 [N] of a ball at rest (0 with linear springs)."""
+        return 0.0 if self.linear is not None else preload
+
+    def state_scales(self):
+        return (1e-6,) * 5 + (1e-3,) * 5 + (self.pitch,)
+
+    def load(self, inputs) -> np.ndarray:
+        """The generalized load F + F_0 of the inputs."""
+        return np.array([inputs[name] for name in LOADS], dtype=float) + self.static_load
+
+    def initial_state(self, t, inputs):
+        """Static equilibrium under the load at t, at rest, balls unshifted."""
+        load = self.load(inputs)
+        if self.linear is not None:
+            k = stiffness_matrix(self.balls(0.0, 0.0)[0], self.linear)
+            q = np.linalg.lstsq(k, load, rcond=None)[0]
+        else:
+            q = HertzBalls(self.body, ball_positions(self.per_row, self.pitch), self.k_h,
+                           inputs["preload"]).equilibrium(load)
+        return (*q, *np.zeros(5), 0.0)
+
+    def derivatives(self, t, state, inputs):
+        y = np.asarray(state, dtype=float)
+        q, rate = y[:5], y[5:10]
+        g, loads, stiffness = self.balls(y[10], inputs["preload"])
+        in_contact = (loads(q) > 0.0) if self.linear is None else np.ones(g.shape[0], bool)
+        restoring = -g.T @ (loads(q) - self.rest_loads(inputs["preload"]))
+        damping = self.damping * g.T @ (in_contact * (g @ rate))
+        acceleration = (self.load(inputs) + restoring - damping) / self.mass
+        return (*rate, *acceleration, 0.5 * inputs["u_feed"])
+
+    def outputs(self, t, state, inputs, wanted=None):
+        y = np.asarray(state, dtype=float)
+        _, loads, _ = self.balls(y[10], inputs["preload"])
+        q_loads = loads(y[:5])
+        out = {name: float(value) for name, value in zip(self.states[:10], y[:10])}
+        out["row_load_1"] = float(np.sum(q_loads[:self.per_row]))
+        out["row_load_2"] = float(np.sum(q_loads[self.per_row:]))
+        return out
+
+    def highest_frequency(self, state, preload: float) -> float:
+        """Highest natural frequency [Hz] of the carriage linearised at the state (for the
+        integrator's substeps: the balls stiffen under load and as the preload rises)."""
+        y = np.asarray(state, dtype=float)
+        g, _, stiffness = self.balls(y[10], preload)
+        k = stiffness_matrix(g, stiffness(y[:5]))
+        return float(modes(k, np.diag(self.mass)).frequencies.max())
+
+
+def from_parameters(mass, inertia_x, inertia_y, inertia_z, contact_angle, d, e, balls_per_row,
+                    pitch, ball_diameter, conformity, ball_stiffness, ball_damping,
+                    static_F_y, static_F_z, static_M_x, static_M_y, static_M_z) -> BallCarriageModel:
+    """The validated model of the BallCarriage5DOF FMU's parameters (fmus/README.md):
+    ``ball_stiffness`` a space-separated list of per-row values [N/m], or empty for the Hertz
+    balls of ``ball_diameter`` and ``conformity`` (their preload is an input); the static_* loads
+    are added to the load inputs."""
+    body = CarriageBody(mass, (inertia_x, inertia_y, inertia_z), contact_angle, d, e)
+    static = (static_F_y, static_F_z, static_M_x, static_M_y, static_M_z)
+    if str(ball_stiffness).strip():
+        try:
+            values = [float(v) for v in str(ball_stiffness).split()]
+        except ValueError:
+            raise ValueError(f"ball_stiffness must be numbers separated by spaces, got "
+                             f"{ball_stiffness!r}") from None
+        return BallCarriageModel(body, balls_per_row, pitch, ball_stiffness=values,
+                                 ball_damping=ball_damping, static_load=static)
+    k_h = hertz_point.ball_constant(hertz_point.BallGroove(ball_diameter, conformity))
+    return BallCarriageModel(body, balls_per_row, pitch, k_h=k_h, ball_damping=ball_damping,
+                             static_load=static)
