@@ -351,7 +351,7 @@ def test_fmu_instance_refuses_missing_file_and_unknown_variable(fmu_dir, tmp_pat
     with pytest.raises(FileNotFoundError, match="nope.fmu"):
         FmuInstance(tmp_path / "nope.fmu", "x")
     inst = FmuInstance(fmu_dir / "FrictionCoulomb.fmu", "fric")
-    with pytest.raises(KeyError, match="F_magic"):
+    with pytest.raises(ValueError, match="F_magic"):
         inst.get("F_magic")
     inst.close()
 

@@ -92,7 +92,7 @@ def test_resume_runs_only_the_points_missing_from_the_table(client, write_sweep,
     full = (out / "results.csv").read_text().splitlines(keepends=True)
     # a sweep killed after two points, while writing the third row
     (out / "results.csv").write_text("".join(full[:3]) + full[3][:20])
-    with pytest.raises(ValueError, match="exists: pass --resume"):
+    with pytest.raises(ValueError, match="exists: continue that sweep with 'resume'"):
         run.run_sweep(sweep, out, client, progress=False, plot=False)
     outcome = run.run_sweep(sweep, out, client, resume=True, progress=False, plot=False)
     assert (outcome.skipped, outcome.ok) == (2, 2)  # two points run, not four

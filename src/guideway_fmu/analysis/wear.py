@@ -134,7 +134,12 @@ def contact_summary(guide: raceway_wear.Guide, load: float) -> dict:
 
 
 def analyse(case: WearCase, distance: float, points: int = 101) -> dict:
-    """The slider over ``distance`` [m]: the keys of the issue's JSON and more (SI units)."""
+    """The slider over ``distance`` [m] (> 0), reported at ``points`` (>= 2) distances: the keys
+    of the wear JSON and more (SI units)."""
+    if not (math.isfinite(distance) and distance > 0):
+        raise ValueError(f"'distance' must be a running distance > 0 m, got {distance}")
+    if points < 2:
+        raise ValueError(f"'points' must be >= 2, got {points}")
     g = case.guide
     history = raceway_wear.simulate(g, case.load, distance, points)
     c = history.columns

@@ -87,7 +87,7 @@ class FmuInstance:
     # -- by name ---------------------------------------------------------------------------
     def variable(self, name: str):
         if name not in self.variables:
-            raise KeyError(f"{self.name}: FMU {self.path.name} has no variable {name!r}")
+            raise ValueError(f"{self.name}: FMU {self.path.name} has no variable {name!r}")
         return self.variables[name]
 
     def unit(self, name: str) -> str:

@@ -46,7 +46,7 @@ def _check_names(rec: Recording, names) -> None:
         raise ValueError("no signals named to plot")
     for name in names:
         if name not in rec.columns:
-            raise KeyError(f"{name!r} is not in the recording; available: {', '.join(rec.columns)}")
+            raise ValueError(f"{name!r} is not in the recording; available: {', '.join(rec.columns)}")
 
 
 def _unit(rec: Recording, name: str) -> str:

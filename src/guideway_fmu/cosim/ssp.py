@@ -183,7 +183,7 @@ def _baked(inst: str, fmu: Path, out: Path, values: dict) -> Path:
         instance = FmuInstance(out, inst)
     except Exception as exc:  # noqa: BLE001 - fmpy raises many kinds for an FMU it cannot load
         raise ValueError(f"{inst}: {fmu} with its start values baked in does not instantiate "
-                         f"({exc}): export with --no-bake and give the parameters to the runner") from exc
+                         f"({exc}): export without baking ('bake' False) and give the parameters to the runner") from exc
     try:
         for name, value in values.items():
             started = instance.get(name)
@@ -192,7 +192,7 @@ def _baked(inst: str, fmu: Path, out: Path, values: dict) -> Path:
                     f"{inst}: {fmu} starts {name} at {started!r} whatever the start value in its "
                     f"modelDescription.xml ({value!r} baked): it cannot carry the scenario's "
                     "parameters. Rebuild it (guideway-fmu build) if it is one of ours built "
-                    "before our FMUs read their start values, or export with --no-bake and "
+                    "before our FMUs read their start values, or export without baking ('bake' False) and "
                     "give the parameters to the runner")
     finally:
         instance.close()

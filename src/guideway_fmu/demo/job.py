@@ -106,6 +106,8 @@ def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02) -> dict:
     each (results, plots), verify one against the monolithic reference, diagnose the bundled
     measured run, sweep the example's points for ``stop`` seconds each and write index.html;
     returns the summary (also in summary.json)."""
+    if not stop > 0:
+        raise ValueError(f"'stop' must be > 0 s, got {stop}")
     out_dir.mkdir(parents=True, exist_ok=True)
     build.build(fmu_dir)
     curves = stiffness_curves(fmu_dir, np.linspace(-5e-6, 5e-6, 101))

@@ -48,7 +48,7 @@ def dask_client(workers: int = 2, scheduler: str | None = None):
             yield client
         return
     if workers < 1:
-        raise ValueError(f"--workers must be >= 1, got {workers}")
+        raise ValueError(f"'workers' must be >= 1, got {workers}")
     with dask.config.set(LOCAL_CLUSTER):
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                           dashboard_address=None) as cluster, Client(cluster) as client:

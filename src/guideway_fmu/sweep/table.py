@@ -38,8 +38,8 @@ class ResultsTable:
         done: set[str] = set()
         if self.path.exists():
             if not resume:
-                raise ValueError(f"{self.path} exists: pass --resume to continue that sweep, or "
-                                 "choose another --out")
+                raise ValueError(f"{self.path} exists: continue that sweep with 'resume', or "
+                                 "choose another 'out' folder")
             done = self._finished()
         else:
             self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -55,13 +55,13 @@ class ResultsTable:
         rows = list(csv.reader(io.StringIO(text)))
         if not rows or rows[0] != self.header:
             raise ValueError(f"{self.path}: its columns {rows[0] if rows else []} are not those of "
-                             f"{self.sweep.path} ({self.header}); use another --out")
+                             f"{self.sweep.path} ({self.header}); use another 'out' folder")
         ids = [row[0] for row in rows[1:]]
         strangers = sorted(set(ids) - set(self.sweep.ids))
         if strangers:
             raise ValueError(f"{self.path}: {len(strangers)} point(s) (first {strangers[0]}) are not "
                              f"points of {self.sweep.path} (another scenario, experiment or "
-                             "design?); use another --out")
+                             "design?); use another 'out' folder")
         return set(ids)
 
     def append(self, index: int, outputs: dict | None, attempts: int, wall_time: float | None,
