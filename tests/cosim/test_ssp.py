@@ -21,7 +21,7 @@ from fmpy.ssp.simulation import simulate_ssp  # fmpy.ssp.simulate parses sys.arg
 
 from guideway_fmu import scenarios
 from guideway_fmu.cosim import master, ssp, system
-from test_fmu_archive import SYMLINK, with_entry  # the malicious FMU of the archive tests
+from support import SYMLINK, with_entry  # a malicious FMU
 
 NS = {"ssd": ssp.SSD, "ssc": ssp.SSC, "ssv": ssp.SSV, "osp": ssp.OSP}
 BASE = {"Contact": {"preload": 8000.0}, "Rough": {"rollers_per_groove": 18}}

@@ -5,7 +5,7 @@ from __future__ import annotations
 import shutil
 
 from guideway_fmu.fmu_build import build
-from guideway_fmu.cosim.fmu_archive import rewrite
+from guideway_fmu.fmi.archive import rewrite
 
 
 def test_ensure_rebuilds_stale_and_missing_fmus_and_keeps_current_and_foreign_ones(

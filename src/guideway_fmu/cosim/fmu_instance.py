@@ -17,7 +17,7 @@ from fmpy.fmi2 import (FMU2Slave, fmi2Boolean, fmi2CallbackAllocateMemoryTYPE,
 from fmpy.fmi2 import calloc, free
 from fmpy.logging import addLoggerProxy
 
-from .fmu_archive import check_entries
+from ..fmi.archive import check_entries
 
 _CTYPES = {"Real": fmi2Real, "Integer": fmi2Integer, "Boolean": fmi2Boolean, "Enumeration": fmi2Integer}
 _STATUS = ["ok", "warning", "discard", "error", "fatal", "pending"]

@@ -77,7 +77,7 @@ from xml.etree import ElementTree as ET
 from fmpy import read_model_description
 from fmpy.ssp.ssd import Parameter, ParameterSet
 
-from .fmu_archive import check_entries, with_start_values, xml_value
+from ..fmi.archive import check_entries, with_start_values, xml_value
 from .fmu_instance import FmuInstance
 from .system import System
 
@@ -101,7 +101,7 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
     Raises FileNotFoundError naming the file if ``out``'s folder or an FMU file does not exist,
     ValueError if two different FMU files share a file name, ``out`` is one of the scenario's
     FMUs or its description (writing it would destroy what it packs), an FMU has an unsafe
-    archive entry (fmu_archive.check_entries), two FMUs define one unit differently, or a baked
+    archive entry (archive.check_entries), two FMUs define one unit differently, or a baked
     FMU does not start at its baked values.
     """
     out = Path(out)
@@ -126,7 +126,7 @@ def packed_files(system: System, out: Path, made: str) -> dict[str, Path]:
     ``made`` (package, FMU) to write: FileNotFoundError naming the file if ``out``'s folder or an
     FMU does not exist; ValueError if ``out`` is one of the FMUs or the scenario file (writing it
     would destroy what it packs), two different FMU files share a name, or an FMU has an unsafe
-    archive entry (fmu_archive.check_entries)."""
+    archive entry (archive.check_entries)."""
     if not out.parent.is_dir():
         raise FileNotFoundError(f"cannot write {out}: folder {out.parent} does not exist")
     inputs = {comp.fmu.resolve(): f"{comp.name}'s FMU" for comp in system.components.values()}

@@ -25,7 +25,7 @@ from fmpy import read_model_description
 from pythonfmu.builder import FmuBuilder
 
 from ..components import registry, runtime
-from ..cosim.fmu_archive import rewrite
+from ..fmi.archive import rewrite
 from . import exit_patch
 
 RUNTIME = runtime.__name__  # shipped with every FMU, which imports it first (SLAVE_SCRIPT)

@@ -17,7 +17,7 @@ from __future__ import annotations
 import struct
 from pathlib import Path
 
-from ..cosim.fmu_archive import rewrite
+from ..fmi.archive import rewrite
 
 SYMBOL = b"finalizePythonInterpreter"
 ENDBR64 = bytes.fromhex("f30f1efa")

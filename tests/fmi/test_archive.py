@@ -5,10 +5,10 @@ import zipfile
 
 import pytest
 
-from guideway_fmu.cosim import fmu_archive
+from guideway_fmu.fmi import archive
 from guideway_fmu.cosim.fmu_instance import FmuInstance
+from support import SYMLINK, with_entry
 
-SYMLINK = (stat.S_IFLNK | 0o777) << 16  # a Unix symbolic link's st_mode in a zip entry
 UNSAFE = [("../outside.txt", 0, "has a '..' path component"),
           ("resources/../../outside.txt", 0, "has a '..' path component"),
           ("/etc/outside.txt", 0, "is an absolute path"),
@@ -17,28 +17,16 @@ UNSAFE = [("../outside.txt", 0, "has a '..' path component"),
           ("resources/fifo", (stat.S_IFIFO | 0o644) << 16, "is a special file")]
 
 
-def with_entry(fmu, out, name, mode):
-    """A copy of ``fmu`` at ``out`` with one more entry ``name`` (Unix ``mode`` in the high bits
-    of its external attributes; a link's data is its target)."""
-    with zipfile.ZipFile(fmu) as src, zipfile.ZipFile(out, "w") as dst:
-        for info in src.infolist():
-            dst.writestr(info, src.read(info))
-        info = zipfile.ZipInfo(name)
-        info.create_system, info.external_attr = 3, mode
-        dst.writestr(info, "/etc/passwd" if mode == SYMLINK else "x")
-    return out
-
-
 @pytest.mark.parametrize("name, mode, why", UNSAFE)
 def test_unsafe_entries_are_refused_naming_the_fmu_and_the_entry(fmu_dir, tmp_path, name, mode, why):
     bad = with_entry(fmu_dir / "FeedKinematics.fmu", tmp_path / "Bad.fmu", name, mode)
     with pytest.raises(ValueError, match=f"Bad.fmu: archive entry '{name}' {why}"):
-        fmu_archive.check_entries(bad)
+        archive.check_entries(bad)
 
 
 def test_the_fmus_we_build_pass(fmu_dir):
     for fmu in fmu_dir.glob("*.fmu"):
-        fmu_archive.check_entries(fmu)
+        archive.check_entries(fmu)
 
 
 @pytest.mark.parametrize("name, mode", [("../outside.txt", 0), ("/outside.txt", 0),
@@ -60,7 +48,7 @@ def test_the_master_extracts_no_fmu_with_an_unsafe_entry(fmu_dir, tmp_path, monk
 def test_a_copy_with_start_values_starts_there_and_keeps_every_other_entry(fmu_dir, tmp_path, fmu,
                                                                           values, defaults):
     source = fmu_dir / f"{fmu}.fmu"
-    copy = fmu_archive.with_start_values(source, tmp_path / "copy.fmu", values)
+    copy = archive.with_start_values(source, tmp_path / "copy.fmu", values)
     with zipfile.ZipFile(source) as a, zipfile.ZipFile(copy) as b:
         assert a.namelist() == b.namelist()
         assert all(a.read(n) == b.read(n) for n in a.namelist() if n != "modelDescription.xml")
@@ -74,4 +62,4 @@ def test_a_copy_with_start_values_starts_there_and_keeps_every_other_entry(fmu_d
 
 def test_a_start_value_of_a_missing_variable_is_refused(fmu_dir, tmp_path):
     with pytest.raises(ValueError, match="FeedKinematics.fmu: modelDescription.xml has no variable 'nope'"):
-        fmu_archive.with_start_values(fmu_dir / "FeedKinematics.fmu", tmp_path / "x.fmu", {"nope": 1.0})
+        archive.with_start_values(fmu_dir / "FeedKinematics.fmu", tmp_path / "x.fmu", {"nope": 1.0})
