@@ -14,7 +14,7 @@ import argparse
 import dataclasses
 from pathlib import Path
 
-from guideway_fmu.analysis import raceway_wear as wa
+from guideway_fmu.analysis import wear as wa
 from guideway_fmu.analysis.wear_plots import plot_figures
 from guideway_fmu.physics.wear import raceway_wear
 
