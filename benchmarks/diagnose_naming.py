@@ -91,7 +91,7 @@ def write_page(path: Path, command: str, args, rows, right: int, hidden: int, wr
         f"sampled. The truth laws differ in form from the candidates' laws. Steps 1-4 only "
         f"(`diagnose/decide.py`, no co-simulation). The generator is the project's own: these "
         f"figures test the workflow against its own assumptions about rigs and effects, not "
-        f"against real records (see docs/discrepancy-workflow.md for the EMPS records).", "",
+        f"against real records ([real-data.md](real-data.md) has public measured ones).", "",
         "| expected answer | named right |", "|---|---|",
         *(f"| `{answer}` | {named} / {total} |" for answer, named, total in rows), "",
         f"Hidden effects named right: {right} / {hidden} ({100 * right / max(hidden, 1):.1f} %).", "",
