@@ -18,16 +18,17 @@ every page). The hash is what the page's numbers are computed from:
   (components/registry.py finds the FMUs that way); a file beside a module whose name a string
   constant of the module spells (``fmu_build/c_host.c``), by its bytes. A module counts by its
   normal form, ``ast.unparse`` of its tree without docstrings and import statements, and by
-  content alone, not by its path: comments, formatting and docstrings do not change a number,
-  and moving a module rewrites the imports of its users but no code. The imports still decide
-  which modules count.
+  content alone, not by its path (identical ones count once): comments, formatting and
+  docstrings do not change a number, and moving a module rewrites the imports of its users but
+  no code. The imports still decide which modules count.
 * data: the files matching the declared ``inputs`` (glob patterns relative to the repository),
   each with its path (pages name them): a TOML file by its parsed content (comments and layout
   do not count), any other file by its bytes.
 
 Not hashed: the command's arguments (the page shows them), this writer, the Python interpreter
 and third-party packages, the machine, and files outside the repository (real_data's raw
-records). A broken import (a module or a name that does not exist) is an error naming the
+records). The normal form is the running Python's ``ast.unparse`` (3.11, as bootstrap.py
+installs): another minor version may spell some code differently and call every page stale. A broken import (a module or a name that does not exist) is an error naming the
 importing file, so a page cannot be recorded, or called current, for a script that cannot run.
 """
 from __future__ import annotations
