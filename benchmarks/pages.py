@@ -27,8 +27,8 @@ every page). The hash is what the page's numbers are computed from:
 
 Not hashed: the command's arguments (the page shows them), this writer, the Python interpreter
 and third-party packages, the machine, and files outside the repository (real_data's raw
-records). The normal form is the running Python's ``ast.unparse`` (3.11, as bootstrap.py
-installs): another minor version may spell some code differently and call every page stale. A broken import (a module or a name that does not exist) is an error naming the
+records). The normal form is the running Python's ``ast.unparse``: a Python of another minor
+version than the one that wrote the pages may spell some code differently and call them stale. A broken import (a module or a name that does not exist) is an error naming the
 importing file, so a page cannot be recorded, or called current, for a script that cannot run.
 """
 from __future__ import annotations
