@@ -18,6 +18,8 @@ from pathlib import Path
 
 from guideway_fmu.fmu_build import build, host_env
 
+import pages
+
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -42,12 +44,11 @@ def main() -> None:
             print(fmu.stem, dict(statuses), f"{seconds:.2f} s per run", flush=True)
     clean = sum(s[0] for _, s, _ in rows)
     lines = ["# The FMUs in a C host", "",
-             "Written by `python benchmarks/c_host_exit.py --runs "
-             f"{args.runs}`; do not edit. Each FMU runs {args.runs} times in",
+             f"Each FMU runs {args.runs} times in",
              "`src/guideway_fmu/fmu_build/c_host.c` (dlopen, instantiate, ten steps, read the "
              "outputs, terminate, free, dlclose, exit) with the environment `guideway-fmu "
-             "host-env` prints:", "",
-             "```", host_env.exports(environment).rstrip(), "```", "",
+             f"host-env` prints ({', '.join(f'`{k}`' for k in environment)}: this machine's "
+             "paths, so not shown here).", "",
              f"{clean} of {args.runs * len(rows)} runs exited with status 0.", "",
              "| FMU | runs | exit 0 | other statuses | seconds per run |",
              "| --- | --- | --- | --- | --- |"]
@@ -60,7 +61,8 @@ def main() -> None:
               "finalisation) and HorizontalRig in 5 of 5 runs from one folder (`free(): corrupted "
               "unsorted chunks`, pythonfmu's exit-time use-after-free), after every FMI call had "
               "returned OK.", ""]
-    args.out.write_text("\n".join(lines))
+    pages.write(args.out, "\n".join(lines), f"python benchmarks/c_host_exit.py --runs {args.runs}",
+                __file__)
     print(f"wrote {args.out}")
 
 

@@ -25,6 +25,8 @@ from guideway_fmu.fmu_build.build import build
 from guideway_fmu.diagnose import truth
 from guideway_fmu.diagnose.trials import diagnose_in_child
 
+import pages
+
 TARGET = 2.0  # GB: the bound on the peak RSS of diagnose at 1e6 rows
 EFFECT = "presliding_hysteresis"
 
@@ -57,7 +59,6 @@ def main(argv=None) -> None:
         ["--rows", *map(str, args.rows), "--seed", str(args.seed)])
     lines = [
         "# Peak memory of diagnose on long records", "",
-        f"Written by `{command}`; rerun it after changing the workflow.", "",
         f"First-generator horizontal records (`diagnose/truth.py`, `{EFFECT}` hidden, 1 kHz, "
         f"seed {args.seed}; seed 3 draws a ball guide, whose ball-to-ball candidate has the "
         f"largest table); each `guideway-fmu diagnose` runs in a child process whose peak "
@@ -65,7 +66,7 @@ def main(argv=None) -> None:
         f"rows. docs/measured-run.md says where the memory went and what bounds it.", "",
         "| rows | peak RSS [GB] | wall time [s] | named |", "|---|---|---|---|",
         *[f"| {n} | {peak:.2f} | {wall:.0f} | `{named}` |" for n, peak, wall, named in rows], ""]
-    Path(args.page).write_text("\n".join(lines))
+    pages.write(args.page, "\n".join(lines), command, __file__)
 
 
 if __name__ == "__main__":

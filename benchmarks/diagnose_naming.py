@@ -24,6 +24,8 @@ import numpy as np
 from guideway_fmu.diagnose import truth
 from guideway_fmu.diagnose.decide import decide
 
+import pages
+
 SIZES = (1.0, 0.5, 1 / 3)
 NOISES = (0.005, 0.01, 0.015)
 
@@ -83,14 +85,13 @@ def write_page(path: Path, command: str, args, rows, right: int, hidden: int, wr
     """The naming figures as a Markdown page."""
     lines = [
         "# How often the discrepancy workflow names the hidden effect", "",
-        f"Written by `{command}`; rerun it after changing the workflow.", "",
         f"Synthetic runs of `diagnose/truth.py`, {args.draws} draws per hidden effect of "
         f"{args.samples} samples from seed {args.seed} on; effect size 1, 1/2 or 1/3 of a clearly "
         f"visible one, noise 0.5, 1.0 or 1.5 % of the force range, every other draw unevenly "
         f"sampled. The truth laws differ in form from the candidates' laws. Steps 1-4 only "
         f"(`diagnose/decide.py`, no co-simulation). The generator is the project's own: these "
         f"figures test the workflow against its own assumptions about rigs and effects, not "
-        f"against real records (see docs/discrepancy-workflow.md for the EMPS records).", "",
+        f"against real records ([real-data.md](real-data.md) has public measured ones).", "",
         "| expected answer | named right |", "|---|---|",
         *(f"| `{answer}` | {named} / {total} |" for answer, named, total in rows), "",
         f"Hidden effects named right: {right} / {hidden} ({100 * right / max(hidden, 1):.1f} %).", "",
@@ -100,7 +101,7 @@ def write_page(path: Path, command: str, args, rows, right: int, hidden: int, wr
         lines += [f"- `{r['effect']}` draw {r['draw']} (size {r['size']}, noise {r['noise']}): "
                   f"named `{r['named']}`; {r.get('leading', r.get('why'))}" for r in wrong]
         lines.append("")
-    path.write_text("\n".join(lines))
+    pages.write(path, "\n".join(lines), command, __file__)
 
 if __name__ == "__main__":
     main()

@@ -24,6 +24,8 @@ from pathlib import Path
 from guideway_fmu.diagnose import second_truth
 from guideway_fmu.diagnose.decide import decide
 
+import pages
+
 CLOSE = 1.3  # the named model's held-out gap within this many noise floors
 
 
@@ -97,11 +99,9 @@ def main(argv=None) -> None:
                      if tuple(chosen) != tuple(every))
     total = sum(c[1] for c in by_effect.values())
     named_right = sum(c[0] for c in by_effect.values())
+    command = (f"python benchmarks/diagnose_second_generator.py --draws {args.draws} "
+               f"--samples {args.samples} --seed {args.seed}{subset}")
     lines = ["# The workflow on the second generator's records", "",
-             f"Written by `python benchmarks/diagnose_second_generator.py --draws {args.draws} "
-             f"--samples {args.samples} --seed {args.seed}{subset}`; rerun it after changing the "
-             "workflow.",
-             "",
              "Records of `diagnose/second_truth.py`, a generator written from the format and the "
              "friction literature without reading the first one, on seeds the workflow was never "
              f"tuned on: {args.draws} draws per allowed pair of effect and record class, "
@@ -116,7 +116,7 @@ def main(argv=None) -> None:
     text = "\n".join(lines) + "\n"
     print(text)
     if args.page != "-":
-        Path(args.page).write_text(text)
+        pages.write(args.page, text, command, __file__)
 
 
 if __name__ == "__main__":

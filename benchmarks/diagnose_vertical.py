@@ -37,6 +37,8 @@ from pathlib import Path
 
 import numpy as np
 
+import pages
+
 CLOSE = 1.3  # the named model's held-out gap after within this many noise floors
 GENERATORS = ("first", "second")
 ANSWERS = ("none", "lubricant_film", "preload_loss", "unmodeled_mass", "unknown")
@@ -221,8 +223,7 @@ def main(argv=None) -> None:
                f"--duration {args.duration:g} --rate {args.rate:g} --samples {args.samples} "
                f"--jobs {args.jobs}")
     lines = ["# The vertical workflow on both vertical generators", "",
-             f"Written by `{command}` ({wall / 60:.1f} min wall time on two shared cores); "
-             "rerun it after changing the workflow.", "",
+             f"Wall time {wall / 60:.1f} min on two shared cores.", "",
              "Records of `diagnose/truth_vertical.py` (the first generator, from the workflow's "
              f"own fused model; {args.duration:g} s at {args.rate / 1e3:g} kHz, displacement on "
              "even draws, acceleration on odd ones) and of `diagnose/second_truth_vertical.py` "
@@ -246,7 +247,7 @@ def main(argv=None) -> None:
     text = "\n".join(lines) + "\n"
     print(text)
     if args.page != "-":
-        Path(args.page).write_text(text)
+        pages.write(args.page, text, command, __file__)
 
 
 if __name__ == "__main__":

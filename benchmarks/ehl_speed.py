@@ -33,6 +33,8 @@ from scipy.linalg import solve_banded, toeplitz
 
 from guideway_fmu.physics.roller_guide.ehl import LineContactEHL, solver
 
+import pages
+
 W, U, G = 1e-4, 1e-11, 4500.0
 SIZES = (513, 1025, 2049)
 REPEAT = 5  # runs of the fast solver; the wall time printed is the least (CPU time alongside)
@@ -132,11 +134,12 @@ def main(argv=None) -> None:
     print(f"targets: t({n0}) = {small:.3f} s (< 0.2 s), t({n1}) = {fast:.3f} s (< 1 s), "
           f"(b) / (a) = {times[DENSE, n1] / fast:.1f} (>= 20)")
     command = " ".join(["python", "benchmarks/ehl_speed.py", *(argv or sys.argv[1:])])
-    args.out.write_text("\n".join([
+    pages.write(args.out, "\n".join([
         "# Speed of the mixed-EHL solver", "",
-        f"Written by `{command}` (wall times depend on the machine and its load; the ratios, "
-        f"measured side by side in one run, much less).", "",
-        __doc__.split("Prints")[0].split("\n", 2)[2].strip(), "", "```", *lines, "```", ""]))
+        "Wall times depend on the machine and its load; the ratios, measured side by side in one "
+        "run, much less.", "",
+        __doc__.split("Prints")[0].split("\n", 2)[2].strip(), "", "```", *lines, "```", ""]),
+        command, __file__)
 
 
 if __name__ == "__main__":

@@ -8,9 +8,10 @@ Solves the smooth steady line contact on the default grid (E' = 2e11 Pa, mu0 = 0
 the deviation of H_c and H_min from Pan and Hamrock (1989), and of H_min from Dowson and
 Higginson's regression, an independent fit. Then the central film at the check point
 (W = 1e-4, U = 1e-11, G = 4500) over the composite roughness with the average flow model and
-ridges along the motion (Peklenik number 9). The unit tests (tests/physics/test_ehl.py) hold the
-limiting cases (Hertz, Martin, pure squeeze, grid convergence); this page holds the comparison
-with regressions, which is a yardstick, not a pass mark.
+ridges along the motion (Peklenik number 9). The unit tests
+(tests/physics/roller_guide/test_ehl.py) hold the limiting cases (Hertz, Martin, pure squeeze,
+grid convergence); this page holds the comparison with regressions, which is a yardstick, not a
+pass mark.
 """
 from __future__ import annotations
 
@@ -22,6 +23,8 @@ import numpy as np
 
 from guideway_fmu.physics.roller_guide.ehl import (LineContactEHL, pan_hamrock,
                                                    solve_dimensionless, solve_steady)
+
+import pages
 
 LOADS = (2e-5, 1e-4, 3e-4)
 SPEEDS = (1e-12, 1e-11, 1e-10)
@@ -61,7 +64,7 @@ def rough_films() -> list[tuple[float, float, float]]:
     return rows
 
 
-def page(command: str, table: dict, rough: list) -> str:
+def page(table: dict, rough: list) -> str:
     head = "| W | film | " + " | ".join(f"U {u:g}, G {g:g}" for u in SPEEDS for g in MATERIALS) + " |"
     rule = "|---|---|" + "---|" * (len(SPEEDS) * len(MATERIALS))
     rows = []
@@ -74,7 +77,6 @@ def page(command: str, table: dict, rough: list) -> str:
     worst = max(table, key=lambda key: abs(table[key][0]))
     lines = [
         "# Mixed-EHL solver against published film formulas", "",
-        f"Written by `{command}`; rerun it after changing physics/roller_guide/ehl.", "",
         "Smooth steady line contact, default grid, E' = 2e11 Pa, mu0 = 0.195 Pa s. Deviation in % "
         "of the solver's central film H_c and minimum film H_min from Pan and Hamrock (1989, PH: "
         "H_c = 2.922 W^-0.166 U^0.692 G^0.470, H_min = 1.714 W^-0.128 U^0.694 G^0.568) and of "
@@ -101,8 +103,8 @@ def main(argv=None) -> None:
                         default=Path(__file__).resolve().parents[1] / "docs" / "ehl-validation.md")
     args = parser.parse_args(argv)
     command = " ".join(["python", "benchmarks/ehl_validation.py", *(argv or sys.argv[1:])])
-    text = page(command, deviations(), rough_films())
-    args.out.write_text(text)
+    text = page(deviations(), rough_films())
+    pages.write(args.out, text, command, __file__)
     print(text)
 
 

@@ -46,7 +46,10 @@ from guideway_fmu.cosim.export_fmu import export_fmu
 from guideway_fmu.reference import monolithic
 from guideway_fmu.reference.verify import LOAD as SIGNAL, compare
 
+import pages
+
 SCENARIO = "soleimanian2020_9000N_4500Hz"
+INPUTS = (f"{pages.SCENARIOS}/{SCENARIO}.toml",)  # data the page is computed from (pages.py)
 REPEATS = 5
 CONTAINER_STEPS = (4e-6, 2e-6, 1e-6, 5e-7, 2.5e-7, 1.25e-7)  # s
 
@@ -221,7 +224,6 @@ def write_page(args, scenario, reference, rows, ratios) -> None:
         "finds the two runs equal bit for bit in our master, and equal to round-off (1e-11 "
         "relative) in libcosim and fmpy's SSP runner.", "",
         "## Cost and accuracy, measured", "",
-        f"Written by `python benchmarks/export_fmu.py --stop {args.stop:g}`; do not edit. "
         f"{scenario.name} over {args.stop:g} s, each run {REPEATS} times, the fastest counted "
         "(whole run: instantiation, initialisation, steps, recording), error: RMS error of "
         f"{SIGNAL} relative to its range against the monolithic reference "
@@ -263,7 +265,8 @@ def write_page(args, scenario, reference, rows, ratios) -> None:
         "the master's side of the coupling (the contact stepping after the carriage with its "
         "inputs at the end of the step, the step-size control), which (e)'s error against (a)'s "
         "shows. The container's own overhead per step is that of compiled code.", ""]
-    args.out.write_text("\n".join(lines))
+    pages.write(args.out, "\n".join(lines), f"python benchmarks/export_fmu.py --stop {args.stop:g}",
+                __file__, INPUTS)
 
 
 if __name__ == "__main__":

@@ -20,9 +20,13 @@ from guideway_fmu.analysis import feed_unit as fa
 from guideway_fmu.analysis.feed_unit_plots import plot_sweep
 from guideway_fmu.physics.ball_guides import feed_unit as fu
 
+import pages
+
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "orchestration" / "ball_guides"
 FILES = ("zhang2019_vertical_10kN", "zhang2019_lateral_10kN", "zhang2019_cutting_offset")
+#: data the page is computed from (pages.py)
+INPUTS = tuple(f"{EXAMPLES.relative_to(ROOT).as_posix()}/{name}.toml" for name in FILES)
 SWEEPS = (("zhang2019_vertical_10kN", "load"), ("zhang2019_lateral_10kN", "load"),
           ("zhang2019_cutting_offset", "point_y"), ("zhang2019_cutting_offset", "point_x"))
 
@@ -99,8 +103,7 @@ def main() -> None:
     plots.append(f"![unloaded, contact angle](figures/{angle_png.name})")
     lines = [
         "# Feed unit: figures beside Zhang, Wang and Le (2019)", "",
-        "Written by `python benchmarks/feed_unit_figures.py`; do not edit. The model and the file "
-        "format are in [feed-unit.md](feed-unit.md).", "",
+        "The model and the file format are in [feed-unit.md](feed-unit.md).", "",
         "The paper gives no dimensions, preload or ball size of its feed unit. The three example "
         "files in `orchestration/ball_guides/` assume a size-25 four-row guide: 3/16 in balls at "
         "conformity 0.52, 45 deg, 12 balls per row 4.8 mm apart, 20 N per ball, sliders at "
@@ -125,8 +128,8 @@ def main() -> None:
         "- **Fig. 16 (reversing the load point reverses the errors).** A vertical force at "
         "(-x, -y) gives the opposite delta_y, epsilon_x, epsilon_y and the same delta_z (the "
         "unit's half-turn symmetry, exact in the nonlinear model; "
-        "`tests/physics/test_feed_unit.py`). The errors the force itself causes (delta_z of a "
-        "vertical force) do not reverse, which the paper's wording leaves out.",
+        "`tests/physics/ball_guides/test_feed_unit.py`). The errors the force itself causes "
+        "(delta_z of a vertical force) do not reverse, which the paper's wording leaves out.",
         f"- **The stiffness turning point.** Under a central vertical load the lower rows go "
         f"slack at {found:.0f} N (hand: 8 n 2^1.5 Q0 sin alpha = {hand:.0f} N at a constant "
         f"angle), where the unit's vertical stiffness has fallen by {100 * drop:.0f} % from rest "
@@ -143,7 +146,8 @@ def main() -> None:
         "Solid: the contact angle follows the load; dashed: constant angle. The vertical and "
         "lateral load sweeps are the paper's Figs. 10, 11, 19, 20; the load-point sweeps Figs. "
         "15, 16; the unloaded contact-angle sweep Fig. 12.", "", *plots, ""]
-    args.out.write_text("\n".join(lines))
+    pages.write(args.out, "\n".join(lines), "python benchmarks/feed_unit_figures.py", __file__,
+                INPUTS)
     print(args.out)
 
 

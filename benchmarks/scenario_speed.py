@@ -25,6 +25,8 @@ from guideway_fmu.cosim.observers import Observer
 from guideway_fmu.reference import monolithic
 from guideway_fmu.reference.verify import compare, judged_signals
 
+import pages
+
 TARGET, STRETCH = 1.0, 0.5  # co-simulation over reference wall time
 NOTES = """\
 Where the co-simulation's time goes (the last columns; profiles of 0.01-0.02 s runs, cProfile
@@ -52,8 +54,8 @@ cycle, the limit omega h <= 0.05 / 0.1 / 0.2 rad, i.e. 4 / 2 / 1 substeps in a 4
 12000 N / 9500 Hz 0.076 / 0.073 / 0.066 %, 6000 N / 9000 Hz 0.021 / 0.018 / 0.013 %, 9000 N /
 5000 Hz (1 us: one substep under every limit) 0.20 %. RK4's phase error, (omega h)^4 / 120 per
 radian, accumulates in the undamped dry responses over the cycle's 8000 rad: 0.2 rad costs
-them up to 0.9 %, 0.1 rad 0.017 %, far inside 1 % (tests/physics/test_carriage.py has the
-study on the law itself: fourth order, 4e-6 of the range over 2 ms at 0.1 rad).
+them up to 0.9 %, 0.1 rad 0.017 %, far inside 1 % (tests/physics/roller_guide/test_carriage.py has
+the study on the law itself: fourth order, 4e-6 of the range over 2 ms at 0.1 rad).
 
 The step the accuracy needs (`--step 4e-6` against each scenario's, whole cycle, measured
 with omega h <= 0.05): 0.005-0.03 % of the range for the lubricated responses that had 1 and
@@ -143,7 +145,7 @@ def main() -> None:
             errors.append(m["error"])
         print(rows[-1], flush=True)
     options = "".join(f" --{k} {getattr(args, k):g}" for k in ("stop", "step")
-                      if getattr(args, k) is not None)
+                      if getattr(args, k) is not None) + "".join(f" {n}" for n in args.names)
     if not ratios:
         raise SystemExit("no scenario compared: the reference models none of them (rows above)")
     summary = (f"Largest ratio {max(ratios):.2f} (target {TARGET:g}, stretch {STRETCH:g}): "
@@ -151,9 +153,8 @@ def main() -> None:
                f"{TARGET:g}, {sum(r <= STRETCH for r in ratios)} at most {STRETCH:g}; largest "
                f"error {100 * max(errors):.3g} %.")
     print(summary)
-    args.out.write_text("\n".join([
+    pages.write(args.out, "\n".join([
         "# Co-simulation speed on the shipped scenarios", "",
-        f"Written by `python benchmarks/scenario_speed.py{options}`; do not edit.", "",
         "Each scenario runs through the master (the stabilised coupling at its step) and through "
         "the monolithic reference (LSODA, or RK45 where a model is not smooth; rtol 1e-10) on "
         "the recorded grid, one after the other in one process on a shared machine (the load "
@@ -167,7 +168,8 @@ def main() -> None:
         "| scenario | step | steps | co-simulation [s] | reference [s] | ratio | signal "
         "| error [%] | loop / step | master / step | FMI / step by instance |",
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |", *rows, "",
-        summary, "", NOTES]))
+        summary, "", NOTES]), f"python benchmarks/scenario_speed.py{options}", __file__,
+        (f"{pages.SCENARIOS}/*.toml",))
     print(args.out)
 
 

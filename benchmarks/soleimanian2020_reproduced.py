@@ -35,6 +35,8 @@ from guideway_fmu.numerics.spectrum import spectrum  # noqa: E402
 from guideway_fmu.physics.roller_guide import four_rows  # noqa: E402
 from guideway_fmu.physics.roller_guide.film import LineContact  # noqa: E402
 
+import pages  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 LOAD_CASES = {6000: (2500, 3000, 4500, 5000, 9000), 9000: (2500, 3000, 4500, 5000, 9000),
               12000: (2500, 3000, 4000, 4500, 9000, 9500)}
@@ -456,9 +458,7 @@ def main(argv=None) -> None:
     default = max(readings, key=lambda r: count[r.name])
     out = Path(args.out)
     lines = ["# Soleimanian et al. (2020) reproduced", "",
-             f"Written by `python benchmarks/soleimanian2020_reproduced.py --jobs {args.jobs}` "
-             f"({(time.perf_counter() - began) / 60:.1f} min); rerun it after changing the "
-             "physics or the scenarios.", "",
+             f"Wall time {(time.perf_counter() - began) / 60:.1f} min.", "",
              "Every number and trend the paper states about its own results that the model "
              "computes, under each reading of the published preload (9200 N, Table 2, shared "
              "over what the paper does not say; analysis/soleimanian2020.py). Each reading's rail "
@@ -501,7 +501,8 @@ def main(argv=None) -> None:
     lines += figures(readings, runs, solutions, out.parent / "figures")
     text = "\n".join(lines) + "\n"
     print(text)
-    out.write_text(text)
+    pages.write(out, text, f"python benchmarks/soleimanian2020_reproduced.py --jobs {args.jobs}",
+                __file__, (f"{pages.SCENARIOS}/soleimanian2020_*.toml",))
 
 
 if __name__ == "__main__":

@@ -23,6 +23,8 @@ from guideway_fmu.fmu_build import build
 from guideway_fmu.sweep import run, sweep_file
 from guideway_fmu.sweep.point import run_point
 
+import pages
+
 SWEEP = """scenario = "soleimanian2020_9000N_4500Hz"
 [experiment]
 stop = {stop}
@@ -68,8 +70,7 @@ def main() -> None:
             (f"{args.workers} Dask worker processes, points only (cluster start "
              f"{ready - start:.2f} s)", f"{swept - ready:.2f}", f"{serial_s / (swept - ready):.2f}")]
     lines = ["# Sweep speed-up", "",
-             f"Written by `python benchmarks/sweep_speedup.py --stop {args.stop:g} --workers "
-             f"{args.workers}`; do not edit. {len(sweep.points)} points (4 load amplitudes x 4 "
+             f"{len(sweep.points)} points (4 load amplitudes x 4 "
              "excitation frequencies) of the shipped 9000 N / 4500 Hz scenario, each a "
              f"co-simulation of {args.stop:g} s reduced to the upper roller load's peak and "
              f"envelope, on a machine with {os.cpu_count()} cores, both runs in one process one "
@@ -80,7 +81,9 @@ def main() -> None:
              "The cluster's start (worker processes importing numpy, SciPy and fmpy) is paid once "
              "per sweep; the points themselves share nothing, so the speed-up approaches the "
              "worker count as points get longer. Other programs on the machine lower it.", ""]
-    args.out.write_text("\n".join(lines))
+    pages.write(args.out, "\n".join(lines),
+                f"python benchmarks/sweep_speedup.py --stop {args.stop:g} --workers {args.workers}",
+                __file__, (f"{pages.SCENARIOS}/soleimanian2020_9000N_4500Hz.toml",))
     print("\n".join(lines))
     print(f"wrote {args.out}")
 

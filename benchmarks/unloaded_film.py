@@ -38,6 +38,8 @@ from guideway_fmu.physics.roller_guide.film import LineContact, film_law
 from guideway_fmu.physics.roller_guide.four_rows import RowKernel
 from guideway_fmu.reference import monolithic
 
+import pages
+
 ROOT = Path(__file__).resolve().parents[1]
 # (scenario, reading): the lubricated scenarios whose rollers lift off as shipped (None: the
 # defaults, the groove reading), and one under the light reading
@@ -50,6 +52,8 @@ M = film_law(LineContact(), 1.0)[1]  # the film law's load exponent, 0.045
 # (integrator, rtol) against DOP853 at 1e-12; the first is the reference's own choice (RK45)
 REFERENCES = ((None, 1e-10), ("DOP853", 1e-10), ("DOP853", 1e-11))
 COLUMN = "Contact.F_upper"
+#: data the page is computed from (pages.py)
+INPUTS = tuple(sorted({f"{pages.SCENARIOS}/{name}.toml" for name, _ in CASES}))
 
 
 def floored(floor: float):
@@ -89,8 +93,6 @@ def main(argv=None) -> None:
     fmus = build.ensure(Path(tempfile.mkdtemp()) / "fmus")
     readings = {r.name: r for r in paper.readings()}
     lines = ["# The film of a roller that lifts off", "",
-             f"Written by `python benchmarks/unloaded_film.py --light-stop {args.light_stop:g}`; "
-             "rerun it after changing the film or the contact.", "",
              "The film law h_s ~ F^-0.045 of Soleimanian et al. (2020) eq. 4 diverges as a "
              "roller's load vanishes. The model follows the squeeze relation to its limit "
              "instead (physics/roller_guide/film.py): a lifted roller keeps its film, which grows at "
@@ -147,7 +149,9 @@ def main(argv=None) -> None:
     text = "\n".join(lines) + "\n"
     print(text)
     if args.out != "-":
-        Path(args.out).write_text(text)
+        pages.write(args.out, text,
+                    f"python benchmarks/unloaded_film.py --light-stop {args.light_stop:g}",
+                    __file__, INPUTS)
 
 
 if __name__ == "__main__":

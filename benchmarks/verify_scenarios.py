@@ -18,6 +18,8 @@ from guideway_fmu.fmu_build.build import ensure
 from guideway_fmu.cosim import system
 from guideway_fmu.reference.verify import verify
 
+import pages
+
 CRITERION = """\
 `verify` first asks how predictable the reference itself is: it runs it twice more, once with
 every state started 1e-9 of its nominal scale away and once at a ten times looser tolerance, and
@@ -87,10 +89,10 @@ def main() -> None:
                     f"| {r['wall_time_cosim'] / r['wall_time_reference']:.2f} |")
         print(rows[-1], flush=True)
     span = "the whole cycle" if args.stop is None else f"{args.stop:g} s"
-    args.out.write_text("\n".join([
+    options = ("" if args.stop is None else f" --stop {args.stop:g}") + "".join(
+        f" {n}" for n in args.names)
+    pages.write(args.out, "\n".join([
         "# Co-simulation accuracy on the shipped scenarios", "",
-        f"Written by `python benchmarks/verify_scenarios.py{'' if args.stop is None else f' --stop {args.stop:g}'}`"
-        "; do not edit.", "",
         f"For the signal `verify` judges (`Contact.F_upper`, or the first plotted variable) over {span}: "
         "the criterion the reference's predictability allows and the spreads that chose it (RMS "
         "change of the monolithic reference, relative to its range, with its start moved by 1e-9 "
@@ -101,7 +103,8 @@ def main() -> None:
         "machine's load moves them; their ratio less; [speed.md](speed.md) says where they go).", "", CRITERION, "",
         "| scenario | signal | step | criterion | spread | error [%] | verdict | co-simulation [s] "
         "| reference [s] | ratio |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |", *rows, "", NOTES]))
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |", *rows, "", NOTES]),
+        f"python benchmarks/verify_scenarios.py{options}", __file__, (f"{pages.SCENARIOS}/*.toml",))
     print(args.out)
 
 

@@ -14,12 +14,15 @@ import argparse
 import dataclasses
 from pathlib import Path
 
-from guideway_fmu.analysis import raceway_wear as wa
+from guideway_fmu.analysis import wear as wa
 from guideway_fmu.analysis.wear_plots import plot_figures
 from guideway_fmu.physics.wear import raceway_wear
 
+import pages
+
 ROOT = Path(__file__).resolve().parents[1]
 CASE = ROOT / "orchestration" / "ball_guides" / "zhang_wear_lg20_2kN.toml"
+INPUTS = (CASE.relative_to(ROOT).as_posix(),)  # data the page is computed from (pages.py)
 SENSITIVITY = (("fractal_dimension", (2.2, 2.4, 2.6, 2.8)), ("friction", (0.05, 0.1, 0.2)),
                ("tangential_ratio", (0.05, 0.2, 0.5)), ("wear_coefficient", (5e-5, 5e-4, 5e-3)))
 
@@ -75,8 +78,7 @@ def main() -> None:
     up = result["contact"]["upper"]
     text = [
         "# Wear of the LG20 guide: figures", "",
-        "Written by `python benchmarks/wear_figures.py`; do not edit. The model and the case "
-        "file are in [wear.md](wear.md).", "",
+        "The model and the case file are in [wear.md](wear.md).", "",
         f"LG20 of the paper's Table 1 (`{CASE.relative_to(ROOT)}`) under {case.load:g} N: the "
         f"upper balls carry {up['ball_load']:.1f} N (mean Hertz pressure "
         f"{up['mean_pressure'] / 1e9:.3f} GPa), roll with the friction coefficient "
@@ -91,7 +93,7 @@ def main() -> None:
         "## Sensitivity of the wear after 5 km", "",
         "One parameter changed at a time from the case above (the tangential-force ratio "
         "replaces the rolling resistance's, about 0.1 here).", "", *_sensitivity(case), ""]
-    args.out.write_text("\n".join(text))
+    pages.write(args.out, "\n".join(text), "python benchmarks/wear_figures.py", __file__, INPUTS)
     print(args.out)
 
 

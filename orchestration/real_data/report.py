@@ -40,6 +40,11 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parents[1]
+sys.path.insert(0, str(REPO / "benchmarks"))
+import pages  # noqa: E402 - benchmarks/pages.py, the writer of every generated docs/ page
+
+#: code the page depends on beyond the script's imports (loaded by file; pages.py)
+INPUTS = ("orchestration/real_data/convert_*.py",)
 
 #: Janot, Gautier & Brunot (2019), inverse dynamic model identified by least squares on EMPS
 EMPS_PUBLISHED = {"mass": 95.1, "coulomb": 20.39, "viscous": 203.5, "offset": -3.16}
@@ -375,14 +380,13 @@ def write_page(records: list[Record], missing: list[str], out: Path, command: st
     lines = [
         "# Real measured records: the workflow's answers beside their authors' findings",
         "",
-        "Written by `orchestration/real_data/report.py` (do not edit by hand; rerun it). Each public",
-        "record of friction in linear motion is converted into a measured run",
+        "Each public record of friction in linear motion is converted into a measured run",
         "([measured-run.md](measured-run.md)), diagnosed by `guideway-fmu diagnose` with the",
         "Coulomb baseline its converter states, and set beside what its authors found. Sources,",
         "licences and every conversion assumption: `orchestration/real_data/README.md` and the",
         "converters' docstrings.",
         "",
-        f"Command: `{command}`; wall time {wall / 60:.1f} min for {len(records)} records "
+        f"Wall time {wall / 60:.1f} min for {len(records)} records "
         f"(one diagnosis at a time, {platform.machine()}, {os.cpu_count()} cores).",
         "",
         f"Workflow: `src/guideway_fmu` at commit {stamp['commit']}"
@@ -533,7 +537,7 @@ def write_page(records: list[Record], missing: list[str], out: Path, command: st
     lines += ["", "## Sources", ""]
     for name, text in sources.items():
         lines.append(f"- `{name}`: {text}")
-    out.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    pages.write(out, "\n".join(lines) + "\n", command, __file__, INPUTS)
 
 
 SOURCES = {

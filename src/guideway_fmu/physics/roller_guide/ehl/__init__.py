@@ -42,8 +42,8 @@ that do not resolve the exit constriction, hence the coarsest-grid rule.
 
 Validation
 ----------
-Limiting cases in tests/physics/test_ehl.py: Hertz's flat film for the Hertz pressure (elastic
-kernel, closed form); Martin's rigid-isoviscous film 4.9 U/W; Hertz pressure at heavy load;
+Limiting cases in tests/physics/roller_guide/test_ehl.py: Hertz's flat film for the Hertz pressure
+(elastic kernel, closed form); Martin's rigid-isoviscous film 4.9 U/W; Hertz pressure at heavy load;
 grid convergence (second order; the default grid, spacing s/40, keeps H_c and H_min within
 about 1 % of the grid limit); load balance and constant mass flow; rigid-isoviscous pure
 squeeze and friction by quadrature; the paper's check point with Table 4. The comparison with
