@@ -45,13 +45,17 @@ def _ratio(text: str) -> float:
 
 
 def _ehl_args(sub) -> None:
+    from .physics.papers import soleimanian2020 as paper
     p = sub.add_parser("ehl", help="numerical mixed-EHL solution of one roller contact")
     for name, unit in (("load", "load per unit length w' [N/m]"),
                        ("velocity", "entrainment (mean) velocity u_m [m/s]"),
-                       ("pressure-viscosity", "alpha [1/Pa] (default 2.2e-8)"),
+                       ("pressure-viscosity",
+                        f"alpha [1/Pa] (default {paper.PRESSURE_VISCOSITY:g})"),
                        ("W", "Hamrock's load W = w'/(E' R)"), ("U", "speed U = mu0 u_m/(E' R)"),
-                       ("G", "material G = alpha E'"), ("radius", "reduced radius R [m] (default 2.5e-3)"),
-                       ("e-reduced", "E' [Pa] (default 2e11)"), ("viscosity", "mu0 [Pa s] (default 0.195)"),
+                       ("G", "material G = alpha E'"),
+                       ("radius", f"reduced radius R [m] (default {paper.ROLLER_RADIUS:g})"),
+                       ("e-reduced", f"E' [Pa] (default {paper.E_REDUCED:g})"),
+                       ("viscosity", f"mu0 [Pa s] (default {paper.VISCOSITY:g})"),
                        ("roughness", "composite RMS roughness [m] (default 0: smooth)"),
                        ("sliding-velocity", "u_s [m/s], friction only (default 0)"),
                        ("peklenik", "Patir-Cheng average flow with this roughness orientation "
@@ -77,7 +81,8 @@ def _ehl_args(sub) -> None:
     p.add_argument("--floor", type=float, default=None,
                    help="load of separated samples, fraction of the largest (default 0.05)")
     p.add_argument("--roughness", type=float, default=None,
-                   help="RMS roughness [m] (default 0.45e-6, Soleimanian et al. 2020, Table 4)")
+                   help=f"RMS roughness [m] (default {paper.ROUGHNESS:g}, Soleimanian et al. "
+                        f"2020, Table 4)")
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
 
 
