@@ -253,7 +253,9 @@ def _demo(args) -> int:
 
 # -- analyses --------------------------------------------------------------------------------
 def _facts_arguments(p) -> None:
-    p.add_argument("--u", type=float, default=0.29, help="feed speed [m/s] (default 0.29)")
+    from .physics.papers.soleimanian2020 import RIG_SPEED
+    p.add_argument("--u", type=float, default=RIG_SPEED,
+                   help=f"feed speed [m/s] (default {RIG_SPEED:g}, the rig's)")
 
 
 def _facts(args) -> int:
@@ -263,12 +265,16 @@ def _facts(args) -> int:
 
 
 def _ehl_arguments(p) -> None:
+    from .physics.papers import soleimanian2020 as paper
     for name, unit in (("load", "load per unit length w' [N/m]"),
                        ("velocity", "entrainment (mean) velocity u_m [m/s]"),
-                       ("pressure-viscosity", "alpha [1/Pa] (default 2.2e-8)"),
+                       ("pressure-viscosity",
+                        f"alpha [1/Pa] (default {paper.PRESSURE_VISCOSITY:g})"),
                        ("W", "Hamrock's load W = w'/(E' R)"), ("U", "speed U = mu0 u_m/(E' R)"),
-                       ("G", "material G = alpha E'"), ("radius", "reduced radius R [m] (default 2.5e-3)"),
-                       ("e-reduced", "E' [Pa] (default 2e11)"), ("viscosity", "mu0 [Pa s] (default 0.195)"),
+                       ("G", "material G = alpha E'"),
+                       ("radius", f"reduced radius R [m] (default {paper.ROLLER_RADIUS:g})"),
+                       ("e-reduced", f"E' [Pa] (default {paper.E_REDUCED:g})"),
+                       ("viscosity", f"mu0 [Pa s] (default {paper.VISCOSITY:g})"),
                        ("roughness", "composite RMS roughness [m] (default 0: smooth)"),
                        ("sliding-velocity", "u_s [m/s], friction only (default 0)"),
                        ("peklenik", "Patir-Cheng average flow with this roughness orientation "
@@ -311,8 +317,10 @@ def _ehl_cycle_arguments(p) -> None:
                    help="squeeze history before an instant [s] (default 2b/u_m; 0: steady)")
     p.add_argument("--floor", type=float, default=None,
                    help="load of separated samples, fraction of the largest (default 0.05)")
+    from .physics.papers.soleimanian2020 import ROUGHNESS
     p.add_argument("--roughness", type=float, default=None,
-                   help="RMS roughness [m] (default 0.45e-6, Soleimanian et al. 2020, Table 4)")
+                   help=f"RMS roughness [m] (default {ROUGHNESS:g}, Soleimanian et al. 2020, "
+                        "Table 4)")
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
 
 

@@ -62,12 +62,11 @@ import numpy as np
 
 from .ehl_plots import plot_distribution, plot_load_history
 from ..physics import checks
+from ..physics.papers import soleimanian2020 as paper
 from ..physics.roller_guide.ehl import (EHLConvergenceError, EHLResult, LineContactEHL,
                                         flow_factors, pan_hamrock, solve_steady, solve_transient,
                                         solver)
 
-RADIUS = 2.5e-3  # m, default reduced radius of ``ehl``: Soleimanian et al.'s roller on a flat raceway
-TABLE4_ROUGHNESS = 0.45e-6  # m, composite RMS roughness of Soleimanian et al. (2020) Table 4
 QUASI_STEADY = 0.01  # relative change of load and u_m over the history below which steady holds
 DEFAULT_FLOOR = 0.05  # separated samples: fraction of the march's largest load
 MAX_HISTORY_SAMPLES = 500  # cap of the default history (cost ~0.1-0.3 s per sample)
@@ -103,10 +102,11 @@ def roller_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None,
                   sliding_velocity=None, peklenik=None) -> LineContactEHL:
     """The line contact of one roller from either dimensional input (load w' [N/m] and
     entrainment velocity u_m [m/s] required, alpha [1/Pa] optional) or Hamrock's W, U, G (all
-    three). radius [m] (default RADIUS), e_reduced [Pa], viscosity [Pa s], roughness [m],
-    sliding_velocity [m/s] and peklenik (the average flow model's roughness orientation, which
-    switches that model on; needs roughness) apply to both; None leaves LineContactEHL's
-    default. Raises ValueError naming the arguments of a mixed or incomplete set."""
+    three). radius [m] (default Soleimanian et al.'s roller on a flat raceway), e_reduced [Pa],
+    viscosity [Pa s], roughness [m], sliding_velocity [m/s] and peklenik (the average flow
+    model's roughness orientation, which switches that model on; needs roughness) apply to
+    both; None leaves LineContactEHL's default. Raises ValueError naming the arguments of a
+    mixed or incomplete set."""
     for name, value in locals().copy().items():
         if value is not None:
             _CONTACT_CHECKS[name](_quoted(name), value)
@@ -129,7 +129,7 @@ def roller_contact(*, load=None, velocity=None, pressure_viscosity=None, W=None,
                              "give 'roughness' > 0 with it")
         common.update(peklenik=flow_factors.check_peklenik("'peklenik'", peklenik),
                       average_flow=True)
-    radius = RADIUS if radius is None else radius
+    radius = paper.ROLLER_RADIUS if radius is None else radius
     if given_g:
         missing = [_quoted(k) for k, v in groups.items() if v is None]
         if missing:
@@ -323,7 +323,7 @@ class _Plan:
 
 
 def analyse_instants(record: RunRecord, instants, *, history: float | None = None,
-                     floor: float = DEFAULT_FLOOR, roughness: float = TABLE4_ROUGHNESS,
+                     floor: float = DEFAULT_FLOOR, roughness: float = paper.ROUGHNESS,
                      nodes: int | None = None) -> list[Instant]:
     """Solve the upper-roller contact at each (label, index) of ``instants`` (see the module
     docstring). ``history`` [s] overrides the default squeeze history (0: steady);
@@ -471,7 +471,7 @@ def format_cycle(instants: list[Instant]) -> str:
 
 def ehl_cycle(run_dir, out, *, instance: str = "Contact", feed: str = "Feed.u", times=None,
               count: int = 10, window: float | None = None, history: float | None = None,
-              floor: float = DEFAULT_FLOOR, roughness: float = TABLE4_ROUGHNESS,
+              floor: float = DEFAULT_FLOOR, roughness: float = paper.ROUGHNESS,
               nodes: int | None = None) -> tuple[list[Instant], list[Path]]:
     """Read the run, choose the instants, solve them and write the outputs (see above)."""
     if roughness < 0.0 or not math.isfinite(roughness):

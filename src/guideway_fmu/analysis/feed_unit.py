@@ -13,6 +13,7 @@ import numpy as np
 
 from ..physics.ball_guides import feed_unit as fu
 from ..physics.ball_guides import hertz_point
+from ..physics.papers import zhang2019
 from . import input_file
 
 KEYS = {"table": ("half_span_x", "half_span_y"),
@@ -24,7 +25,7 @@ MODELS = {"angle_change": True, "constant_angle": False}
 #: what --sweep varies, its unit and default range (None: from the file)
 SWEEPS = {"load": ("fraction of the file's load", (0.0, 1.0)),
           "point_x": ("m", None), "point_y": ("m", None),
-          "contact_angle": ("deg", (30.0, 65.0))}  # the paper's range of contact angles
+          "contact_angle": ("deg", zhang2019.CONTACT_ANGLE_RANGE_DEG)}
 
 
 @dataclass(frozen=True)

@@ -24,21 +24,22 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..numerics.spectrum import spectrum
+from ..physics.papers import soleimanian2020 as paper
+from ..physics.papers.soleimanian2020 import RIG_SPEED
 from ..physics.roller_guide import carriage, four_rows, friction, greenwood_tripp
 from ..physics.rigs.feed_motion import Oscillating
 from ..physics.roller_guide.film import LineContact, film_law, steady_film
 from ..physics.roller_guide.roller_law import approach_for_load
 
-PRELOAD = 9200.0  # N, Table 2
-PAPER_NATURAL_FREQUENCY = 6590.0  # Hz, the unloaded rig
-RIG_SPEED = 0.29  # m/s, amplitude of the rig's bi-harmonic feed (eq. 1a, A1 = 0.2919)
+PAPER_NATURAL_FREQUENCY = paper.NATURAL_FREQUENCY  # Hz, the unloaded rig
 SHARES = {"carriage": 1, "side": 2, "groove": 4}  # the 9200 N over 4 / n of the grooves
-HESS_SOOM_LOAD = 250.0  # N, the load of Hess and Soom's test in Fig. 11
 # Table 1: the surface and lubricant of the Hess and Soom comparison (Fig. 11)
 HESS_SOOM = friction.MixedFrictionParams(
-    surface=greenwood_tripp.Surface(asperity_density=7e9, asperity_radius=10e-6,
-                                    roughness=0.45e-6, e_reduced=2e11),
-    limiting_shear_stress=3.5e6, limiting_shear_slope=0.047)
+    surface=greenwood_tripp.Surface(asperity_density=paper.HESS_SOOM_ASPERITY_DENSITY,
+                                    asperity_radius=paper.HESS_SOOM_ASPERITY_RADIUS,
+                                    roughness=paper.ROUGHNESS, e_reduced=paper.E_REDUCED),
+    limiting_shear_stress=paper.HESS_SOOM_LIMITING_SHEAR_STRESS,
+    limiting_shear_slope=paper.LIMITING_SHEAR_SLOPE)
 
 
 @dataclass(frozen=True)
@@ -77,9 +78,9 @@ def readings() -> list[Reading]:
     """The three readings, the mass of each fitted to the published natural frequency (to the
     gram: a scenario states it in a few digits)."""
     omega = 2 * math.pi * PAPER_NATURAL_FREQUENCY
-    return [Reading(name, PRELOAD * share,
-                    round(_stiffness(four_rows.Guideway(preload=PRELOAD * share)) / omega**2, 3))
-            for name, share in SHARES.items()]
+    preloads = {name: paper.PRELOAD * share for name, share in SHARES.items()}
+    return [Reading(name, f0, round(_stiffness(four_rows.Guideway(preload=f0)) / omega**2, 3))
+            for name, f0 in preloads.items()]
 
 
 def film_to_solid_stiffness(g: four_rows.Guideway) -> float:
@@ -121,9 +122,10 @@ def hess_soom_friction(time):
     time 99 h_s / |u| (under a millisecond) is short against the 200 ms cycle.
     """
     _, u, _ = Oscillating().evaluate(np.asarray(time, dtype=float))
-    film = steady_film(LineContact(), HESS_SOOM_LOAD, u)
-    boundary, viscous = friction.contact_friction(HESS_SOOM_LOAD, film, u, HESS_SOOM)
-    return u, (boundary + viscous) / HESS_SOOM_LOAD
+    load = paper.HESS_SOOM_LOAD
+    film = steady_film(LineContact(), load, u)
+    boundary, viscous = friction.contact_friction(load, film, u, HESS_SOOM)
+    return u, (boundary + viscous) / load
 
 
 def rig_facts(u: float = RIG_SPEED) -> dict:

@@ -30,7 +30,7 @@ from ..physics.rigs import friction_laws
 from ..physics.ball_guides import ball_to_ball as b2b
 from ..physics.roller_guide.friction import CoulombParams, coulomb_friction
 from ..physics.dynamics import regularised_sign
-from .run_io import MeasuredRun
+from .run_io import REDUCED_MODULUS, MeasuredRun
 from .signals import SIGN_WIDTH, Derivation, Motion, smooth_channel
 
 SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
@@ -609,7 +609,7 @@ class BallToBall(_Table):
         spacing = float(ctx.distance[-1]) / (fit.setting["nodes"] - 1)
         nu = 0.3
         bearing = b2b.Bearing(radius, self.CONFORMITY,
-                              float(guideway.get("reduced_modulus", 2.0e11)) * (1 - nu**2), nu,
+                              float(guideway.get("reduced_modulus", REDUCED_MODULUS)) * (1 - nu**2), nu,
                               self.CONTACT_FRICTION,
                               np.radians(float(guideway.get("contact_angle_deg", 45.0))), 1.0)
         row = ball_row.BallRow(bearing, max(balls, 2), max(balls, 2) * 2 * radius

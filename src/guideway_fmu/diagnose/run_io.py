@@ -28,6 +28,9 @@ VOCABULARY = {
 GUIDEWAY_TYPES = ("roller", "ball")
 #: [guideway] keys that must be > 0 (rows and elements_per_row: whole numbers >= 1; preload >= 0)
 POSITIVE_GUIDEWAY = ("element_radius", "roller_length", "reduced_modulus")
+#: Pa, [guideway] reduced_modulus where a rig file states none: steel on steel, the format's
+#: default (not a paper's E')
+REDUCED_MODULUS = 2.0e11
 #: conventions of a friction_force channel: the force resisting the motion (opposite to
 #: feed_velocity), or the force a sensor feels (along the motion); the workflow works along it
 FRICTION_SIGNS = ("opposes_motion", "along_motion")

@@ -100,6 +100,8 @@ from typing import Callable
 import numpy as np
 from scipy.signal import lfilter
 
+from .run_io import REDUCED_MODULUS
+
 #: hidden effect -> the answer the workflow should give
 EFFECTS = {
     "none": "none",
@@ -347,7 +349,7 @@ def _draw_rig(seed, effect, record_class) -> _Rig:
     table["contact_angle_deg"] = 45.0
     table["preload"] = float(_log_uniform(rng, 300.0, 5000.0))
     if rng.random() < 0.3:
-        table["reduced_modulus"] = 2.0e11
+        table["reduced_modulus"] = REDUCED_MODULUS
     coulomb = table["preload"] * rng.uniform(0.002, 0.008) + rng.uniform(2.0, 15.0)
     mass = rng.uniform(2.0, 25.0)
     return _Rig(table, float(coulomb), float(mass) if record_class in DRIVE_CLASSES else 0.0)

@@ -98,6 +98,7 @@ from guideway_fmu.diagnose.second_truth import (DWELL, FORMAT, NOISE_COLOURS, VI
                                                 _is_int, _is_real, _log_uniform, _move, _rms,
                                                 _schedule_motion, _sine_motion, _stream,
                                                 _toml_value, _unit_noise, _write_csv)
+from guideway_fmu.diagnose.run_io import REDUCED_MODULUS as STEEL_MODULUS
 
 #: hidden effect -> the answer the workflow should give
 EFFECTS = {
@@ -435,9 +436,6 @@ class _Rig:
     pressure_viscosity: float  # 1/Pa
     modulus_written: bool  # whether rig.toml states reduced_modulus
     roughness: float | None  # m, [surface] roughness where written
-
-
-STEEL_MODULUS = 2.0e11  # Pa, the format's default reduced modulus (steel on steel)
 
 
 def _draw_rig(seed) -> _Rig:

@@ -87,6 +87,7 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 from scipy.optimize import brentq
 
+from ..physics.papers import soleimanian2020
 from .candidates import CANDIDATES
 
 __all__ = [
@@ -496,7 +497,8 @@ def simulate(effect: str, rng: np.random.Generator, *, size: float = 1.0, noise:
     per_row = int(rig_rng.integers(14, 31))
     preload = round(coulomb / rig_rng.uniform(0.004, 0.012), -1)
     load = round(rig_rng.uniform(200.0, 1500.0), 1)
-    lubricant = {"viscosity": round(rig_rng.uniform(0.05, 0.3), 3), "pressure_viscosity": 2.2e-8}
+    lubricant = {"viscosity": round(rig_rng.uniform(0.05, 0.3), 3),
+                 "pressure_viscosity": soleimanian2020.PRESSURE_VISCOSITY}
     roughness = round(rig_rng.uniform(0.1e-6, 0.5e-6), 9)
     offset_fraction = rig_rng.uniform(-0.03, 0.03)
 
@@ -564,7 +566,7 @@ def simulate(effect: str, rng: np.random.Generator, *, size: float = 1.0, noise:
     guideway = {"type": "ball" if ball else "roller", "rows": 4, "elements_per_row": per_row,
                 "element_radius": radius}
     if not ball:
-        guideway["roller_length"] = 8.0e-3
+        guideway["roller_length"] = soleimanian2020.ROLLER_LENGTH
     guideway.update({"contact_angle_deg": 45.0, "preload": preload})
     rig = {
         "format": FORMAT,

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 from scipy.signal import lfilter
 
+from ..physics.papers import soleimanian2020
 from ..physics.roller_guide.film import LineContact
 from .run_io import FORMAT, load_run
 from .vertical import VerticalRig
@@ -95,7 +96,7 @@ def make_run(out_dir, effect: str, rng: np.random.Generator, fmu_dir, *, duratio
     n = int(round(duration * rate))
     t = (np.arange(n) + (rng.uniform(0, 0.5, n) if jitter else 0.0)) / rate
     v_max, phase = rng.uniform(0.1, 0.3), rng.uniform(0, 2 * math.pi)
-    w = 2 * math.pi * 5.0
+    w = 2 * math.pi * soleimanian2020.FEED_FREQUENCY
     u = v_max * (np.sin(w * t + phase) + 0.06 * np.sin(3 * w * t + 0.6 * phase))
     x = v_max * ((np.cos(phase) - np.cos(w * t + phase)) / w
                  + 0.06 * (np.cos(0.6 * phase) - np.cos(3 * w * t + 0.6 * phase)) / (3 * w))

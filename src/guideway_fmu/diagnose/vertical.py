@@ -72,7 +72,7 @@ from . import locate, regression
 from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _bic, _confidence,
                      significant_gap)
 from .realise import write_replay
-from .run_io import MeasuredRun
+from .run_io import REDUCED_MODULUS, MeasuredRun
 from .signals import channel_noise, denoise_spectrum, derive_motion
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
@@ -198,7 +198,7 @@ class VerticalRig:
                                float(guideway["roller_length"])),
             "contact_angle": math.radians(float(guideway["contact_angle_deg"])),
             "roller_radius": float(guideway["element_radius"])}
-        self.e_reduced = float(guideway.get("reduced_modulus", 2.0e11))
+        self.e_reduced = float(guideway.get("reduced_modulus", REDUCED_MODULUS))
         self.base = Setting(
             run.moving_mass, run.model["contact"], float(guideway["preload"]),
             float(lubricant.get("viscosity", LineContact.viscosity)),

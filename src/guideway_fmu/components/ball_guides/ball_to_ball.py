@@ -8,6 +8,7 @@ import numpy as np
 from ..runtime import DefaultExperiment
 
 from ...physics.ball_guides import ball_row
+from ...physics.papers import lin2019, wu2012
 from ..base import GuidewaySlave
 
 
@@ -29,14 +30,20 @@ class BallToBallFriction(GuidewaySlave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.parameter("radius", 4.763e-3 / 2, "m", "ball radius R_B")
-        self.parameter("conformity", 0.534, "1", "groove radius / ball diameter (> 0.5)")
-        self.parameter("youngs_modulus", 2.1e11, "Pa", "Young's modulus of balls and grooves")
-        self.parameter("poisson_ratio", 0.28, "1", "Poisson's ratio of balls and grooves")
-        self.parameter("friction", 0.1, "1", "metal-to-metal friction coefficient mu")
-        self.parameter("nominal_angle", math.radians(45.0), "rad", "nominal contact angle beta_0")
-        self.parameter("balls", 9, None, "balls in the row's load zone (>= 2)")
-        self.parameter("zone_length", 43e-3, "m", "length of the load zone (> balls x diameter)")
+        # a row of Wu et al.'s carriage (the BallCarriage5DOF FMU's) of Lin et al.'s material
+        self.parameter("radius", wu2012.BALL_DIAMETER / 2, "m", "ball radius R_B")
+        self.parameter("conformity", wu2012.CONFORMITY, "1",
+                       "groove radius / ball diameter (> 0.5)")
+        self.parameter("youngs_modulus", lin2019.YOUNGS_MODULUS, "Pa",
+                       "Young's modulus of balls and grooves")
+        self.parameter("poisson_ratio", lin2019.POISSON_RATIO, "1",
+                       "Poisson's ratio of balls and grooves")
+        self.parameter("friction", lin2019.FRICTION, "1", "metal-to-metal friction coefficient mu")
+        self.parameter("nominal_angle", math.radians(wu2012.CONTACT_ANGLE_DEG), "rad",
+                       "nominal contact angle beta_0")
+        self.parameter("balls", wu2012.BALLS_PER_ROW, None, "balls in the row's load zone (>= 2)")
+        self.parameter("zone_length", wu2012.LOAD_ZONE_LENGTH, "m",
+                       "length of the load zone (> balls x diameter)")
         for contact in ("BL", "BR", "TR", "TL"):
             self.parameter(f"deviation_{contact}", 0.0, "rad",
                            f"constant contact-angle deviation of the {contact} contact")

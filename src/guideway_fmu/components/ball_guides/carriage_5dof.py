@@ -9,6 +9,7 @@ from ..runtime import DefaultExperiment
 
 from ...physics.ball_guides import carriage_5dof as bc
 from ...physics.dynamics import rk4_step, substeps
+from ...physics.papers import wu2012
 from ..base import GuidewaySlave
 
 #: RK4 substeps keep omega_max h below this (RK4 is stable to 2.8; 0.5 keeps the period error
@@ -40,16 +41,22 @@ class BallCarriage5DOF(GuidewaySlave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.parameter("mass", 0.313, "kg", "carriage mass m")
-        for axis, value in zip("xyz", (9.938e-5, 6.136e-5, 1.394e-4)):
+        self.parameter("mass", wu2012.MASS, "kg", "carriage mass m")
+        for axis, value in zip("xyz", wu2012.INERTIA):
             self.parameter(f"inertia_{axis}", value, "kg.m2", f"moment of inertia J_{axis}")
-        self.parameter("contact_angle", math.radians(45.0), "rad", "ball contact angle beta")
-        self.parameter("d", 7.37e-3, "m", "distance of the contact points from the x-y plane")
-        self.parameter("e", 10.3e-3, "m", "distance of the contact points from the x-z plane")
-        self.parameter("balls_per_row", 9, None, "balls in the load zone of each row")
-        self.parameter("pitch", 43e-3 / 9, "m", "ball spacing along x")
-        self.parameter("ball_diameter", 4.763e-3, "m", "ball diameter (Hertz balls)")
-        self.parameter("conformity", 0.534, "1", "groove radius / ball diameter (> 0.5)")
+        self.parameter("contact_angle", math.radians(wu2012.CONTACT_ANGLE_DEG), "rad",
+                       "ball contact angle beta")
+        self.parameter("d", wu2012.OFFSET_D, "m",
+                       "distance of the contact points from the x-y plane")
+        self.parameter("e", wu2012.OFFSET_E, "m",
+                       "distance of the contact points from the x-z plane")
+        self.parameter("balls_per_row", wu2012.BALLS_PER_ROW, None,
+                       "balls in the load zone of each row")
+        self.parameter("pitch", wu2012.LOAD_ZONE_LENGTH / wu2012.BALLS_PER_ROW, "m",
+                       "ball spacing along x")
+        self.parameter("ball_diameter", wu2012.BALL_DIAMETER, "m", "ball diameter (Hertz balls)")
+        self.parameter("conformity", wu2012.CONFORMITY, "1",
+                       "groove radius / ball diameter (> 0.5)")
         self.parameter("ball_stiffness", "", None, "per-row ball stiffnesses [N/m], space "
                        "separated, both rows alike: linear springs instead of Hertz balls "
                        "(empty: Hertz)")
@@ -60,8 +67,8 @@ class BallCarriage5DOF(GuidewaySlave):
             self.input(name, 0.0, unit, f"external {'force' if unit == 'N' else 'moment'} {name} "
                        f"on the carriage, held over a step")
         self.input("u_feed", 0.0, "m/s", "feed velocity of the carriage along x")
-        self.input("preload", 46.6, "N", "normal load of each Hertz ball at rest (falls as the "
-                   "raceways wear: connect Wear.preload); > 0 at the start", True)
+        self.input("preload", wu2012.PRELOAD, "N", "normal load of each Hertz ball at rest "
+                   "(falls as the raceways wear: connect Wear.preload); > 0 at the start", True)
         for name in bc.DOF:
             self.output(name, UNITS[name], WHAT[name])
         for name in bc.DOF:

@@ -8,6 +8,7 @@ from ..runtime import DefaultExperiment
 
 from ...physics.ball_guides import feed_unit as fu
 from ...physics.ball_guides import hertz_point
+from ...physics.papers import zhang2019
 from ..base import GuidewaySlave
 
 FORCE_INPUTS = ("F_x", "F_y", "F_z")
@@ -41,7 +42,8 @@ class FeedUnitErrors(GuidewaySlave):
         self.parameter("half_span_y", 0.15, "m", "W_y: rails at y = +-W_y")
         self.parameter("row_spacing_y", 0.023, "m", "L_y: between a slider's left and right rows")
         self.parameter("row_spacing_z", 0.010, "m", "L_z: between a slider's upper and lower rows")
-        self.parameter("contact_angle", math.radians(45.0), "rad", "ball contact angle alpha at rest")
+        self.parameter("contact_angle", math.radians(zhang2019.CONTACT_ANGLE_DEG), "rad",
+                       "ball contact angle alpha at rest")
         self.parameter("balls_per_row", 12, None, "balls in the load zone of each row")
         self.parameter("pitch", 4.8e-3, "m", "ball spacing along x")
         self.parameter("ball_diameter", 4.7625e-3, "m", "ball diameter D")

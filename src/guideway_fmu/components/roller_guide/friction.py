@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from ...physics.roller_guide import greenwood_tripp
 from ...physics.roller_guide import friction
+from ...physics.papers import soleimanian2020
 from ..base import GuidewaySlave
 
 
@@ -11,7 +12,8 @@ class _Friction(GuidewaySlave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.parameter("rollers_per_groove", 20, None, "rollers N in each of the 4 grooves")
+        self.parameter("rollers_per_groove", soleimanian2020.ROLLERS_PER_GROOVE, None,
+                       "rollers N in each of the 4 grooves")
         self.parameter("velocity_tolerance", 1e-4, "m/s",
                        "velocity scale of the regularised sign, tanh(u / v); 0 gives sign(u)")
         self.input("F_upper", 0.0, "N", "load of one roller in an upper groove (>= 0)", True)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from ..runtime import DefaultExperiment
 
-from ...physics.wear import creep, raceway_wear
+from ...physics.wear import raceway_wear
 from ..base import GuidewaySlave
 
 GUIDE = raceway_wear.Guide()  # the LG20 defaults
@@ -45,7 +45,7 @@ class Wear(GuidewaySlave):
         self.parameter("fractal_scale", GUIDE.fractal_scale, "m", "fractal scale G of the raceway")
         self.parameter("wear_coefficient", GUIDE.wear_coefficient, "1", "fractal wear coefficient K_f")
         self.parameter("friction", GUIDE.friction, "1", "sliding friction coefficient mu of the creep")
-        self.parameter("hysteresis", creep.HYSTERESIS, "1", "elastic hysteresis coefficient tau")
+        self.parameter("hysteresis", GUIDE.hysteresis, "1", "elastic hysteresis coefficient tau")
         self.parameter("spacing_ratio", GUIDE.spacing_ratio, "1", "ball centre distance / diameter D_w")
         self.parameter("rolling_resistance", True, None, "true: the tangential force is the "
                        "balls' rolling resistance; false: tangential_ratio")

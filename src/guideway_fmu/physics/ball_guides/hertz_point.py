@@ -34,9 +34,10 @@ from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
 from .. import checks
+from ..papers import wu2012
 
 METHODS = ("exact", "hamrock-brewe")
-STEEL = (206e9, 0.3)  # Young's modulus [Pa], Poisson's ratio [-] (Wu et al. 2012)
+STEEL = (wu2012.YOUNGS_MODULUS, wu2012.POISSON_RATIO)  # Young's modulus [Pa], Poisson's ratio [-]
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ from scipy.integrate import cumulative_trapezoid
 
 from .. import checks
 from ..dynamics import ContinuousModel
+from ..papers import soleimanian2020 as paper
 
 __all__ = [
     "FeedProfile", "BiHarmonic", "Oscillating", "Constant", "Trapezoid", "Table", "Replay",
@@ -78,11 +79,11 @@ class BiHarmonic(FeedProfile):
     so the second term runs at 3 f. Amplitudes [m/s], phases [rad], frequency f [Hz].
     """
 
-    amplitude1: float = 0.2919
-    amplitude2: float = 0.0178
-    phase1: float = 2.0588
-    phase2: float = 1.2679
-    frequency: float = 5.0
+    amplitude1: float = paper.RIG_AMPLITUDE_1
+    amplitude2: float = paper.RIG_AMPLITUDE_2
+    phase1: float = paper.RIG_PHASE_1
+    phase2: float = paper.RIG_PHASE_2
+    frequency: float = paper.FEED_FREQUENCY
 
     def validate(self) -> None:
         checks.check_fields(self, {
@@ -112,9 +113,9 @@ class Oscillating(FeedProfile):
     Defaults from Table 1: mean u_bar = 0.2375 m/s, amplitude a_u = 0.25 m/s, f_v = 5 Hz.
     """
 
-    mean: float = 0.2375
-    amplitude: float = 0.25
-    frequency: float = 5.0
+    mean: float = paper.HESS_SOOM_MEAN_SPEED
+    amplitude: float = paper.HESS_SOOM_SPEED_AMPLITUDE
+    frequency: float = paper.FEED_FREQUENCY
 
     def validate(self) -> None:
         checks.check_fields(self, {
@@ -134,9 +135,9 @@ class Oscillating(FeedProfile):
 
 @dataclass(frozen=True)
 class Constant(FeedProfile):
-    """Constant feed velocity u = velocity [m/s]."""
+    """Constant feed velocity u = velocity [m/s], by default the rig's feed speed."""
 
-    velocity: float = 0.29
+    velocity: float = paper.RIG_SPEED
 
     def validate(self) -> None:
         checks.check_fields(self, {"velocity": checks.finite})

@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass
 
 from .. import checks
+from ..papers import soleimanian2020 as paper
 from ..dynamics import ContinuousModel, substeps
 from .roller_law import OpposedRows
 
@@ -38,12 +39,10 @@ SPEED_SCALE = 0.043  # m/s
 
 @dataclass(frozen=True)
 class Carriage:
-    """The moving body of eq. 1b; the default mass is our assumption (see ``mass``)."""
+    """The moving body of eq. 1b; the default mass is the project's assumption
+    (papers.soleimanian2020.RAIL_MASS: the paper gives none)."""
 
-    # 3.302 kg: about 0.3 m of a 45 mm x 38 mm steel rail (about 11 kg/m), which puts the
-    # unloaded natural frequency of the default guideway at the paper's 6590 Hz (to the gram;
-    # analysis/soleimanian2020.py).
-    mass: float = 3.302  # kg
+    mass: float = paper.RAIL_MASS  # kg
     gravity: float = STANDARD_GRAVITY  # m/s^2
 
     def validate(self) -> None:

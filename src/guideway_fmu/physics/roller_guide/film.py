@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
+from ..papers import soleimanian2020 as paper
 
 FILM_MODELS = ("extrapolated", "pan_hamrock")
 
@@ -67,11 +68,11 @@ _LAWS = {  # coefficient, exponents of (Fbar, U, G), velocity used in U as a fra
 class LineContact:
     """What the film law needs of one roller-raceway contact (Soleimanian et al. 2020, Tables 2 and 3)."""
 
-    radius: float = 2.5e-3  # m, roller radius
-    length: float = 8.0e-3  # m, roller length
-    e_reduced: float = 2.0e11  # Pa, E'
-    viscosity: float = 0.195  # Pa s, mu0 at ambient pressure
-    pressure_viscosity: float = 2.2e-8  # 1/Pa, alpha
+    radius: float = paper.ROLLER_RADIUS  # m, roller radius
+    length: float = paper.ROLLER_LENGTH  # m, roller length
+    e_reduced: float = paper.E_REDUCED  # Pa, E'
+    viscosity: float = paper.VISCOSITY  # Pa s, mu0 at ambient pressure
+    pressure_viscosity: float = paper.PRESSURE_VISCOSITY  # 1/Pa, alpha
     model: str = "extrapolated"
 
     def validate(self) -> None:

@@ -32,6 +32,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .. import checks
+from ..papers import soleimanian2020 as paper
 from .film import (S_MAX, S_MIN, SQUEEZE_GAIN, SQUEEZE_WEIGHT, LineContact, film_law, film_rate,
                    speed_exponent, squeeze_factor, steady_film, unsqueezed_film)
 from .roller_law import (EXPONENT, MICRON, OpposedRows, approach_for_load, contact_force,
@@ -42,9 +43,9 @@ from .roller_law import (EXPONENT, MICRON, OpposedRows, approach_for_load, conta
 class Guideway:
     """A four-row roller guideway; defaults from Soleimanian et al. (2020) Table 2 and the INA RUE45-E."""
 
-    rollers_per_groove: int = 20
-    contact_angle: float = np.pi / 4  # rad, from the horizontal
-    preload: float = 36800.0  # N, F0 over all 4 N rollers: the paper's 9200 N per groove
+    rollers_per_groove: int = paper.ROLLERS_PER_GROOVE
+    contact_angle: float = paper.CONTACT_ANGLE  # rad, from the horizontal
+    preload: float = paper.GUIDEWAY_PRELOAD  # N, F0 over all 4 N rollers: 9200 N per groove
     contact: LineContact = field(default_factory=LineContact)  # roller and lubricant
     stiffness: float = 0.0  # N/m^(10/9), k per roller; 0 selects Palmgren's formula
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import checks
+from ..papers import soleimanian2020 as paper
 from ..dynamics import Algebraic, regularised_sign
 from . import greenwood_tripp as gt, hertz_line
 
@@ -24,12 +25,12 @@ class MixedFrictionParams:
     """
 
     surface: gt.Surface = field(default_factory=gt.Surface)
-    roller_radius: float = 2.5e-3  # R [m]
-    roller_length: float = 8e-3  # l [m]
-    rollers_per_groove: int = 20  # N [-]
-    viscosity: float = 0.195  # mu_0 [Pa s]
-    limiting_shear_stress: float = 2e6  # tau_l0 [Pa]
-    limiting_shear_slope: float = 0.047  # beta_m [-]
+    roller_radius: float = paper.ROLLER_RADIUS  # R [m]
+    roller_length: float = paper.ROLLER_LENGTH  # l [m]
+    rollers_per_groove: int = paper.ROLLERS_PER_GROOVE  # N [-]
+    viscosity: float = paper.VISCOSITY  # mu_0 [Pa s]
+    limiting_shear_stress: float = paper.LIMITING_SHEAR_STRESS  # tau_l0 [Pa]
+    limiting_shear_slope: float = paper.LIMITING_SHEAR_SLOPE  # beta_m [-]
     velocity_tolerance: float = 1e-4  # of regularised_sign [m/s]
 
     def validate(self) -> None:
@@ -138,7 +139,7 @@ class CoulombParams:
     """
 
     coefficient: float = 0.005  # mu [-]
-    rollers_per_groove: int = 20  # N [-]
+    rollers_per_groove: int = paper.ROLLERS_PER_GROOVE  # N [-]
     velocity_tolerance: float = 1e-4  # of regularised_sign [m/s]
 
     def validate(self) -> None:

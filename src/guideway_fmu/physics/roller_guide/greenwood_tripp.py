@@ -11,6 +11,7 @@ import numpy as np
 from scipy.special import gamma, pbdv
 
 from .. import checks
+from ..papers import soleimanian2020 as paper
 
 # F_n(lambda) < exp(-lambda^2 / 2) underflows to 0 in double precision beyond lambda ~ 38.6;
 # above this cut-off scipy's D_v would also return NaN, so the result is set to 0 directly.
@@ -76,10 +77,10 @@ def f2_polynomial(lam):
 class Surface:
     """Rough-surface parameters; defaults from Soleimanian et al. (2020) Table 3."""
 
-    asperity_density: float = 0.54e9  # n [1/m^2]
-    asperity_radius: float = 1.5e-4  # beta [m]
-    roughness: float = 0.45e-6  # sigma, composite RMS [m]
-    e_reduced: float = 2e11  # E' [Pa]
+    asperity_density: float = paper.ASPERITY_DENSITY  # n [1/m^2]
+    asperity_radius: float = paper.ASPERITY_RADIUS  # beta [m]
+    roughness: float = paper.ROUGHNESS  # sigma, composite RMS [m]
+    e_reduced: float = paper.E_REDUCED  # E' [Pa]
 
     def validate(self) -> None:
         """Raise ValueError naming the first field that is not finite and > 0."""

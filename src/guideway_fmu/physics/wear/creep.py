@@ -28,8 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
-
-HYSTERESIS = 0.9  # tau of eq. 37 (3 x 0.3, the paper's value for a slender ellipse)
+from ..papers import zhang_wang_jiang as paper
 
 
 @dataclass(frozen=True)
@@ -71,7 +70,7 @@ def creep(along: float, across: float, diameter: float, friction: float,
 
 
 def rolling_friction(along: float, radius: float, approach: float,
-                     hysteresis: float = HYSTERESIS) -> float:
+                     hysteresis: float = paper.HYSTERESIS) -> float:
     """mu_b [-] (eqs. 36-37) of a ball of ``radius`` R_b [m] with the contact semi-axis a
     ``along`` the rolling [m] and the approach delta [m]."""
     a = checks.non_negative("along", along)

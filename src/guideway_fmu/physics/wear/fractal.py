@@ -43,14 +43,11 @@ from scipy.optimize import brentq
 from scipy.special import gamma as gamma_function
 
 from .. import checks
-
-GAMMA = 1.5  # frequency ratio of the W-M series (the paper's choice)
-PATCH_AREA = 64e-12  # m^2, A_alpha: the paper's 8 x 8 um differential surface
-HARDNESS_PER_YIELD = 2.8  # H = 2.8 sigma_s (the paper)
+from ..papers import zhang_wang_jiang as paper
 
 
 def wm_profile(x, dimension: float, scale: float, lowest: float, highest: float,
-               gamma: float = GAMMA) -> np.ndarray:
+               gamma: float = paper.FREQUENCY_RATIO) -> np.ndarray:
     """z(x) [m] of eq. 38 at the positions x [m] for the profile dimension D' (1, 2), G [m],
     with frequencies gamma^n from ``lowest`` up to ``highest`` [1/m]."""
     checks.in_range("dimension", dimension, 1.0 + 1e-9, 2.0 - 1e-9)
@@ -77,7 +74,7 @@ def structure_function(z, spacing: float, lags) -> np.ndarray:
     return np.array([np.mean((z[k:] - z[:-k]) ** 2) for k in lags])
 
 
-def wm_constant(dimension: float, gamma: float = GAMMA) -> float:
+def wm_constant(dimension: float, gamma: float = paper.FREQUENCY_RATIO) -> float:
     """C of E(tau) = C G^(2(D'-1)) tau^(4-2D'); Gamma(e) sin(pi e/2) at e = 2D'-3 is written
     Gamma(1+e) (pi/2) sinc(e/2), finite through D' = 1.5."""
     e = 2 * dimension - 3
@@ -97,7 +94,7 @@ class StructureFit:
 
 
 def fit_structure_function(z, spacing: float, shortest: int = 1, longest: int | None = None,
-                           points: int = 40, gamma: float = GAMMA) -> StructureFit:
+                           points: int = 40, gamma: float = paper.FREQUENCY_RATIO) -> StructureFit:
     """D' and G of the profile z [m] sampled every ``spacing`` [m]: least squares on the log-log
     structure function over lags from ``shortest`` to ``longest`` samples (default a tenth of
     the profile), geometrically spaced."""
@@ -132,8 +129,8 @@ class FractalSurface:
     e_star: float
     yield_strength: float
     hardness: float
-    gamma: float = GAMMA
-    patch_area: float = PATCH_AREA
+    gamma: float = paper.FREQUENCY_RATIO
+    patch_area: float = paper.PATCH_AREA
 
     def __post_init__(self):
         checks.in_range("fractal dimension D", self.dimension, 2.0 + 1e-6, 3.0 - 1e-6)

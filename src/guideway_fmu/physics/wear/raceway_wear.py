@@ -45,6 +45,7 @@ from scipy.optimize import brentq
 from .. import checks
 from . import creep, fractal
 from ..ball_guides import hertz_point
+from ..papers import zhang_wang_jiang as paper
 
 #: ball loads of the rate table: geometric from the load where the Hertz mean pressure reaches
 #: the yield strength (no wear below it) up to this multiple of it
@@ -74,26 +75,24 @@ class BallContact:
 @dataclass(frozen=True)
 class Guide:
     """A linear ball guide's slider and its wear parameters; the defaults are the LG20 of the
-    paper's Table 1 (E and nu give its E* = 1.143e5 MPa), except where it states none:
-    ``fractal_dimension`` (D, lost from the extracted text: D = 2.8 makes the paper's G describe
-    a profile of 0.29 um RMS over its 675 um measured length, a ground raceway, where D = 2.4
-    would mean 9 um; docs/wear.md), ``friction`` (mu of Carter's creep), ``spacing_ratio``
-    (D_w, touching balls)."""
+    paper (papers.zhang_wang_jiang: Table 1, E and nu that give its E* = 1.143e5 MPa, and the
+    project's reading of the fractal dimension D), except where it states none: ``friction``
+    (mu of Carter's creep), ``spacing_ratio`` (D_w, touching balls)."""
 
-    ball_diameter: float = 3.969e-3  # D_b [m]
-    conformity: float = 0.51  # f, groove radius / ball diameter
-    balls_per_row: int = 12  # n_s
-    contact_angle: float = math.radians(45.0)  # alpha [rad]
-    preload_deformation: float = 4e-6  # delta_0 [m], each ball's approach at rest
-    youngs_modulus: float = 2.08e11  # E [Pa], balls and raceways
-    poisson_ratio: float = 0.3  # nu
-    yield_strength: float = 518.4e6  # sigma_s [Pa]
-    hardness: float | None = None  # H [Pa]; None: 2.8 sigma_s (the paper)
-    fractal_dimension: float = 2.8  # D of the raceway surface, 2 < D < 3
-    fractal_scale: float = 2.38e-8  # G [m]
-    wear_coefficient: float = 5e-4  # K_f
+    ball_diameter: float = paper.BALL_DIAMETER  # D_b [m]
+    conformity: float = paper.CONFORMITY  # f, groove radius / ball diameter
+    balls_per_row: int = paper.BALLS_PER_ROW  # n_s
+    contact_angle: float = math.radians(paper.CONTACT_ANGLE_DEG)  # alpha [rad]
+    preload_deformation: float = paper.PRELOAD_DEFORMATION  # delta_0 [m], approach at rest
+    youngs_modulus: float = paper.YOUNGS_MODULUS  # E [Pa], balls and raceways
+    poisson_ratio: float = paper.POISSON_RATIO  # nu
+    yield_strength: float = paper.YIELD_STRENGTH  # sigma_s [Pa]
+    hardness: float | None = None  # H [Pa]; None: paper.HARDNESS_PER_YIELD sigma_s
+    fractal_dimension: float = paper.FRACTAL_DIMENSION  # D of the raceway surface, 2 < D < 3
+    fractal_scale: float = paper.FRACTAL_SCALE  # G [m]
+    wear_coefficient: float = paper.WEAR_COEFFICIENT  # K_f
     friction: float = 0.1  # mu
-    hysteresis: float = creep.HYSTERESIS  # tau
+    hysteresis: float = paper.HYSTERESIS  # tau
     spacing_ratio: float = 1.0  # D_w, ball centre distance over diameter
     tangential_ratio: float | None = None  # P_x / (mu Q); None: mu_b / mu (rolling resistance)
     lateral_ratio: float = 0.0  # P_y / (mu Q)
@@ -121,7 +120,7 @@ class Guide:
         e_star = self.groove.e_reduced / 2  # 1/E* = sum (1 - nu^2)/E (eq. 11)
         object.__setattr__(self, "surface", fractal.FractalSurface(
             self.fractal_dimension, self.fractal_scale, e_star, self.yield_strength,
-            fractal.HARDNESS_PER_YIELD * self.yield_strength if self.hardness is None
+            paper.HARDNESS_PER_YIELD * self.yield_strength if self.hardness is None
             else self.hardness))
 
     # -- one ball ---------------------------------------------------------------------------

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ... import checks
+from ...papers import soleimanian2020 as paper
 from .. import greenwood_tripp as gt
 from . import flow_factors
 
@@ -80,21 +81,23 @@ class LineContactEHL:
     load: float  # w', load per unit length [N/m]
     radius: float  # R, reduced radius [m]
     entrainment_velocity: float  # u_m = (u1 + u2) / 2 [m/s]
-    e_reduced: float = 2e11  # E' [Pa]
-    viscosity: float = 0.195  # mu0 at ambient pressure [Pa s]
-    pressure_viscosity: float = 2.2e-8  # alpha [1/Pa]
+    e_reduced: float = paper.E_REDUCED  # E' [Pa]
+    viscosity: float = paper.VISCOSITY  # mu0 at ambient pressure [Pa s]
+    pressure_viscosity: float = paper.PRESSURE_VISCOSITY  # alpha [1/Pa]
     sliding_velocity: float = 0.0  # u_s [m/s]
     roughness: float = 0.0  # sigma, composite RMS [m]
-    asperity_density: float = 0.54e9  # n [1/m^2]
-    asperity_radius: float = 1.5e-4  # beta [m]
-    limiting_shear_stress: float = 2e6  # tau_l0 [Pa]
-    limiting_shear_slope: float = 0.047  # beta_m [-]
+    asperity_density: float = paper.ASPERITY_DENSITY  # n [1/m^2]
+    asperity_radius: float = paper.ASPERITY_RADIUS  # beta [m]
+    limiting_shear_stress: float = paper.LIMITING_SHEAR_STRESS  # tau_l0 [Pa]
+    limiting_shear_slope: float = paper.LIMITING_SHEAR_SLOPE  # beta_m [-]
     average_flow: bool = False  # Patir-Cheng flow factors (True) or Soleimanian et al. (2020) eq. 18 (False)
     peklenik: float = 1.0  # gamma of the average flow model: 1 isotropic, 9 ground along motion
 
     @classmethod
-    def from_dimensionless(cls, W: float, U: float, G: float, *, radius: float = 2.5e-3,
-                           e_reduced: float = 2e11, viscosity: float = 0.195, **fields):
+    def from_dimensionless(cls, W: float, U: float, G: float, *,
+                           radius: float = paper.ROLLER_RADIUS,
+                           e_reduced: float = paper.E_REDUCED,
+                           viscosity: float = paper.VISCOSITY, **fields):
         """The contact with Hamrock's W, U, G at the given R [m], E' [Pa] and mu0 [Pa s].
 
         R, E' and mu0 do not change a smooth solution's W, U, G scaling, except through the
