@@ -48,6 +48,7 @@ from . import locate, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          PreslidingHysteresis, candidates_for)
 from .run_io import MeasuredRun, load_run
+from .scoring import bic
 from .signals import derive_motion, noise_rms, sampling_step
 
 SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
@@ -85,11 +86,6 @@ DELAY_SHARE = 0.4
 ODD_KNOTS = 10  # knots of the delay search's free friction curve over the speed (besides 0)
 #: knots of its friction level over the running distance
 LEVEL_KNOTS = 6
-
-
-def _bic(residual, mask, k) -> float:
-    n = int(mask.sum())
-    return n * np.log(max(float(np.mean(residual[mask] ** 2)), 1e-300)) + k * np.log(n)
 
 
 def _confidence(scores: dict, chosen: str) -> float:
@@ -300,8 +296,8 @@ def decide(run_dir) -> Naming:
         return still
     if still is not None:  # a shift the search left open: the better best model decides
         common = moved.usable & still.usable
-        fits = [_bic(naming.best_residual, common, naming.best_parameters + extra)
-                for naming, extra in ((still, 0), (moved, 1))]
+        fits = [bic(float(np.sum(naming.best_residual[common] ** 2)), int(common.sum()),
+                    naming.best_parameters + extra) for naming, extra in ((still, 0), (moved, 1))]
         if fits[0] - fits[1] <= SCORE_MIN:
             return still
     run.channel_delay = shift
@@ -374,7 +370,12 @@ def _name(ctx: Context) -> Naming:
     span = float(np.ptp(y[usable]))
     gap_cv = locate.gap(y, base_cv, usable)
     significant = significant_gap(gap_cv, noise_cv, int(usable.sum()))
-    bic_base = _bic(y - base_cv, usable, baseline.n_parameters)
+    n_usable = int(usable.sum())
+
+    def held_out_bic(prediction, parameters):  # scoring.bic of the out-of-fold residual
+        return bic(float(np.sum((y - prediction)[usable] ** 2)), n_usable, parameters)
+
+    bic_base = held_out_bic(base_cv, baseline.n_parameters)
     ranked, cv_gaps = [], {}
     best_residual, best_parameters, best_score = y - base_cv, baseline.n_parameters, 0.0
     for candidate in candidates_for(run):
@@ -382,7 +383,7 @@ def _name(ctx: Context) -> Naming:
         if any(f is None for f in fitted):
             continue
         prediction = out_of_fold([f.prediction for f in fitted])
-        score = bic_base - _bic(y - prediction, usable, fitted[0].n_parameters)
+        score = bic_base - held_out_bic(prediction, fitted[0].n_parameters)
         ranked.append((score, fitted[0], locate.gap(y, fitted[0].prediction, held)))
         cv_gaps[candidate.effect] = locate.gap(y, prediction, usable)
         if score > best_score:
@@ -399,7 +400,7 @@ def _name(ctx: Context) -> Naming:
                 for b, (f, _) in zip(bases, splits)]
         prediction = out_of_fold([b.prediction + values for b, (_, values, _) in zip(bases, laws)])
         terms = max(n for _, _, n in laws)
-        score = bic_base - _bic(y - prediction, usable, baseline.n_parameters + terms)
+        score = bic_base - held_out_bic(prediction, baseline.n_parameters + terms)
         return laws[0], score, prediction
 
     def unexplained(mask, laws, whole):  # a gap on mask a law explains, or too large for noise

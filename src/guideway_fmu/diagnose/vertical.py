@@ -60,6 +60,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..fmu_build import build
 from ..cosim import master, system as cosim_system
+from ..numerics.spectrum import spectrum, uniform_grid
 from ..physics.roller_guide import four_rows as gw
 from ..physics.roller_guide import contact_model
 from ..physics.roller_guide.carriage import LENGTH_SCALE, STANDARD_GRAVITY
@@ -69,10 +70,11 @@ from ..physics.roller_guide.roller_law import EXPONENT, MICRON, palmgren_stiffne
 from ..reference.vertical import FusedVertical
 from ..scenarios import couple_contact
 from . import locate, regression
-from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _bic, _confidence,
+from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _confidence,
                      significant_gap)
 from .realise import write_replay
 from .run_io import MeasuredRun
+from .scoring import bic
 from .signals import channel_noise, denoise_spectrum, derive_motion
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
@@ -239,15 +241,10 @@ class VerticalRig:
         return float(np.sqrt(k / setting.mass) / (2 * math.pi))
 
     def spectrum(self, values, pad: int = 1) -> tuple[np.ndarray, np.ndarray]:
-        """(f [Hz], amplitude) of ``values`` at the samples, resampled to their median step,
-        Hann-windowed, the transform zero-padded ``pad`` times (a finer grid of frequencies)."""
-        t = self.run.time
-        step = float(np.median(np.diff(t)))
-        grid = t[0] + step * np.arange(int((t[-1] - t[0]) / step) + 1)
-        v = np.interp(grid, t, values)
-        window = np.hanning(v.size)
-        amplitude = np.abs(np.fft.rfft((v - v.mean()) * window, pad * v.size)) * 2 / window.sum()
-        return np.fft.rfftfreq(pad * v.size, step), amplitude
+        """numerics.spectrum (f [Hz], amplitude) of ``values`` at the samples, resampled onto
+        numerics.uniform_grid of their times, the transform zero-padded ``pad`` times."""
+        grid = uniform_grid(self.run.time)
+        return spectrum(grid, np.interp(grid, self.run.time, values), pad=pad)
 
     def measured_natural_frequency(self, y) -> float | None:
         """The record's free-vibration peak [Hz]: the largest of the measured channel's spectrum
@@ -519,11 +516,16 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     baseline = fit_baseline(rig, y, fit_mask)
     residual = y - baseline.prediction
     gap_base = locate.gap(y, baseline.prediction, held)
-    bic_base = _bic(residual, held, baseline.n_parameters)
+    n_held = int(held.sum())
+
+    def held_out_bic(r, parameters):  # scoring.bic of the residual r on the held-out samples
+        return bic(float(np.sum(r[held] ** 2)), n_held, parameters)
+
+    bic_base = held_out_bic(residual, baseline.n_parameters)
     ranked = []
     for candidate in candidates(rig.base):
         fitted = fit_candidate(rig, candidate, y, fit_mask)
-        score = bic_base - _bic(y - fitted.prediction, held, fitted.n_parameters)
+        score = bic_base - held_out_bic(y - fitted.prediction, fitted.n_parameters)
         ranked.append((score, fitted, locate.gap(y, fitted.prediction, held)))
     ranked.sort(key=lambda item: -item[0])
     # the noise from the best model's residual: a baseline that misses a vibration near the
@@ -548,7 +550,7 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
             terms = law_terms(rig, frequencies)
             coefficients = regression.stlsq(terms, residual, fit_mask)
             law = sum((c * terms[t] for t, c in coefficients.items()), np.zeros_like(y))
-            law_score = bic_base - _bic(residual - law, held, 1 + len(coefficients))
+            law_score = bic_base - held_out_bic(residual - law, 1 + len(coefficients))
             explains = law_score > SCORE_MIN and share(
                 locate.gap(y, baseline.prediction + law, held)) >= LAW_EXPLAINED
             if explains or gap_base > UNRESOLVED * noise:
