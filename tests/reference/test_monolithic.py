@@ -14,8 +14,7 @@ from guideway_fmu.cosim import master, system
 from guideway_fmu.physics.roller_guide import carriage, four_rows
 from guideway_fmu.physics.rigs import feed_motion
 
-RIG_WIRING = [("Carriage.y", "Contact.y"), ("Carriage.y_dot", "Contact.y_dot"),
-              ("Contact.F_contact", "Carriage.F_contact")]
+RIG_WIRING = scenarios.coupling()
 FRICTION_WIRING = [("Feed.u", "Friction.u"), *((f"Contact.{v}", f"Friction.{v}")
                                                for v in ("F_upper", "F_lower", "h_upper", "h_lower"))]
 

@@ -1,10 +1,11 @@
 """The discrepancy workflow for vertical responses (docs/measured-run.md, "For vertical runs").
 
-**The model** is the vertical system of FMUs wired as the paper scenarios: FeedKinematics (the
-measured motion replayed) -> the contact's feed velocity; ForceTable (the measured normal
-force) -> VerticalDynamics.F_ext; VerticalDynamics <-> the contact named in [model] (dry_hertz:
-ContactDryHertz, ehl: ContactEHL, whose film follows eq. 4 with its squeeze term), with the
-contact's tangent and force law handed to the carriage. What the format fixes, mapped to it:
+**The model** is the vertical rig of FMUs (scenarios.vertical_rig), coupled as the paper
+scenarios: FeedKinematics (the measured motion replayed) -> the contact's feed velocity;
+ForceTable (the measured normal force) -> VerticalDynamics.F_ext; VerticalDynamics <-> the
+contact named in [model] (dry_hertz: ContactDryHertz, ehl: ContactEHL, whose film follows eq. 4
+with its squeeze term), with the contact's tangent and force law handed to the carriage. What
+the format fixes, mapped to it:
 
 * the moving mass is VerticalDynamics' mass, gravity along y (along normal_force);
 * rows / 2 rows of elements_per_row rollers above the moving part and as many below, each
@@ -68,7 +69,7 @@ from ..physics.roller_guide.film import LineContact
 from ..physics.rigs.force_table import ForceTable
 from ..physics.roller_guide.roller_law import EXPONENT, MICRON, palmgren_stiffness
 from ..reference.vertical import FusedVertical
-from ..scenarios import couple_contact
+from ..scenarios import vertical_rig
 from . import locate, regression
 from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _confidence,
                      significant_gap)
@@ -279,19 +280,12 @@ class VerticalRig:
         if step is None:
             interval = float(np.median(np.diff(t)))
             step = interval / max(1, math.ceil(interval / COSIM_STEP))
-        fmus = self.fmu_dir.resolve()
-        contact = CONTACT_FMUS[setting.contact]
         b = cosim_system.Builder(name, f"{self.run.path.name}: {name}").experiment(
             start=float(t[0]), stop=float(t[-1]), step=float(step), algorithm="stabilised")
-        b.component("Feed", fmus / "FeedKinematics.fmu", profile="replay",
-                    table_file=str(self.replay.resolve()))
-        b.component("Load", fmus / "ForceTable.fmu", table_file=str(self.load.resolve()),
-                    column="normal_force")
-        b.component("Carriage", fmus / "VerticalDynamics.fmu", mass=setting.mass,
-                    y_start=self.start(setting))
-        b.component("Contact", fmus / f"{contact}.fmu", **self.contact_parameters(setting))
-        b.connect("Feed.u", "Contact.u").connect("Load.F", "Carriage.F_ext")
-        couple_contact(b, lubricated=setting.contact == "ehl")
+        vertical_rig(b, self.fmu_dir.resolve(), CONTACT_FMUS[setting.contact],
+                     self.replay.resolve(), self.load.resolve(),
+                     {"mass": setting.mass, "y_start": self.start(setting)},
+                     self.contact_parameters(setting))
         b.record([self.column, "Carriage.y", "Contact.F_upper", "Contact.h_upper", "Feed.u"])
         b.plots(time=[self.column, "Contact.F_upper"], spectrum=[self.column])
         return b.system()
