@@ -22,11 +22,11 @@
    the acceleration alone is the input's error times the mass); else ``none``: a small gap
    that neither physics nor a law accounts for is taken as what the data cannot resolve
    (coloured noise, errors of the measured inputs such as accelerations differenced from
-   encoder counts), which the synthetic null runs show. Significance and the share explained
-   are judged against the white floor, a lower bound of the noise, so that coloured noise
-   never hides a structured gap a candidate explains; it includes, in quadrature, the noise a
-   derived acceleration carries into the model's m a (known from its filter:
-   signals.Derivation.output_noise).
+   encoder counts: the true model fed such inputs misses by that much too). Significance and
+   the share explained are judged against the white floor, a lower bound of the noise, so that
+   coloured noise never hides a structured gap a candidate explains; it includes, in
+   quadrature, the noise a derived acceleration carries into the model's m a (known from its
+   filter: signals.Derivation.output_noise).
    The reported noise floor is the larger of the white floor and the
    incoherent noise left by the reported model (the named one, the baseline with its law for
    ``unknown``, else the baseline).
@@ -57,17 +57,16 @@ EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate
 ONE_WAY = 0.02  # least share of the moving samples each direction of motion must have
 LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
 #: a significant gap no candidate or law explains is ``unknown`` above this many times the whole
-#: noise, else ``none``: below it, it is what errors of the measured inputs alone produce (the
-#: true model fed the recorded motion of synthetic null runs misses by up to about 1.4 white
-#: noise floors)
+#: noise, else ``none``: the errors of the measured inputs (a differenced, quantised motion) alone
+#: leave the true model a gap of the noise's order, which the bound must clear with a margin
 UNRESOLVED = 2.0
 #: the acceleration derived from the position may carry this share of the force channel's noise
 #: (over the moving mass): its error enters the model as m a, and 0.3 adds 4 % to the noise in
 #: quadrature while the shortest such window keeps the filter's bias on short ramps small
 INPUT_SHARE = 0.3
 #: |corr(running distance, position)| over the usable samples above which the record passes its
-#: positions once (one long stroke with jogs: 0.9998 and more in the synthetic runs where it
-#: happened; records with a return stroke that were looked at: 0.85-0.92)
+#: positions once: 1 on one monotone stroke, hardly less with short jogs back, while a return
+#: stroke over the same positions runs the distance up as the position falls, well below it
 SAME_PATH = 0.99
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 #: samples with a resolved acceleration the input check needs (signals.Motion.unresolved);
@@ -75,12 +74,11 @@ MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 MIN_RESOLVED = 60
 MAX_DELAY = 5  # samples: the longest delay of the compared channel behind the motion sought
 #: a delay is taken where it cuts the free model's residual mean square in excess of the noise
-#: below DELAY_GAIN of the unshifted one's (the delay is all there is: a few samples cut it to
-#: 0.0003-0.23 on the second generator's development draws, seeds 50000-50003, above 0.1 only on
-#: velocity-only records, pre-sliding without a delay to 0.27-0.52 on the first's, seeds 1000+,
-#: when the search's model was Coulomb's alone), or the whole mean square by DELAY_SHARE (another
-#: effect stays beside the delay: 0.49 and more where the true shift halves the excess, 0.34 at
-#: most without a delay, on the development draws of seeds 97000-98003 and 1000+)
+#: below DELAY_GAIN of the unshifted one's (the delay is all there is: the shift removes most of
+#: the excess, while a shape the free model lacks, pre-sliding say, leaves a large part of it
+#: whatever the shift), or the whole mean square by DELAY_SHARE (another effect stays beside the
+#: delay: the shift then removes a large share of the whole, more than a shift without a delay
+#: removes by fitting noise and shape)
 DELAY_GAIN = 0.15
 DELAY_SHARE = 0.4
 ODD_KNOTS = 10  # knots of the delay search's free friction curve over the speed (besides 0)
@@ -415,8 +413,8 @@ def _name(ctx: Context) -> Naming:
     effect, winner, equation, values = "none", None, None, None
     chosen, twins = _same_path_choice(ctx, usable, ranked)
     # residuals correlated over tau samples count each sample tau times in the BIC: the richer
-    # model must beat the nested one by SCORE_MIN in independent samples (pink noise made a
-    # free table's shape details worth 35-145 against a preload law's, tau 11-14)
+    # model must beat the nested one by SCORE_MIN in independent samples (a free table fits
+    # the shape of correlated noise, which the BIC of correlated samples overrates tau times)
     chosen = _nested_choice(ranked, chosen, SCORE_MIN * (locate.correlation_time(
         y - ranked[chosen][1].prediction, usable) if ranked else 1.0))
     if significant:

@@ -45,8 +45,9 @@ workflow's rules (decide.py: significance, SCORE_MIN, EXPLAINED, UNRESOLVED), wi
 in the feed velocity, the normal force and the residual's peak frequencies for ``unknown``.
 **Realisation** co-simulates the named model (or the baseline) through the FMUs with the
 stabilised coupling at a macro step of at most COSIM_STEP, halved up to REFINEMENTS times until
-its RMS deviation from the decision's model is within REALISED noise floors (a dry record of
-the first generator: 1.8 noise floors of gap after at 4 us, 1.06 at 1 us).
+its RMS deviation from the decision's model is within REALISED noise floors (an undamped
+response near resonance can need a finer step than the paper scenarios' coarsest to follow the
+decision's model to the noise).
 """
 from __future__ import annotations
 
@@ -84,7 +85,9 @@ CHANNELS = {"vertical_displacement": ("Carriage.y", "m"),
             "vertical_acceleration": ("Carriage.y_ddot", "m/s2")}
 COSIM_STEP = 4e-6  # s, largest macro step of the realisation (the paper scenarios' coarsest)
 REFINEMENTS = 2  # halvings of the realisation's macro step at most
-REALISED = 0.3  # the realisation's RMS deviation from the decision's model, in noise floors
+#: the realisation's RMS deviation from the decision's model, in noise floors: uncorrelated
+#: with the residual, it adds 4.4 % to a gap at the noise (sqrt(1 + 0.3^2))
+REALISED = 0.3
 INPUT_NOISE_SEED = 0  # of the white noise VerticalRig.input_noise drives the model with
 SIMULATIONS = 6  # most simulations a candidate's fit takes
 START_STEP = 3.0  # load noise RMS of the start's secant in calibrate
@@ -523,8 +526,7 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
         ranked.append((score, fitted, locate.gap(y, fitted.prediction, held)))
     ranked.sort(key=lambda item: -item[0])
     # the noise from the best model's residual: a baseline that misses a vibration near the
-    # sampling rate leaves second differences far above the noise (up to 10 times on the first
-    # generator's preload and mass records)
+    # sampling rate leaves second differences far above the noise (the vibration's own)
     noise = min(locate.noise_floor(y, y - model.prediction, held)
                 for model in [baseline] + [fitted for _, fitted, _ in ranked[:1]])
     # with the response to what noise of the load cell the denoised column still holds
