@@ -1,19 +1,9 @@
 """Shared fixtures of the test suite."""
-import os
-from pathlib import Path
-
 import numpy as np
 import pytest
 from pythonfmu.builder import FmuBuilder
 
 from guideway_fmu.fmu_build import exit_patch
-
-
-def real_data_folder() -> Path:
-    """The folder of real records (emps-identification/, emps-validation/): the one setting
-    GUIDEWAY_FMU_DATA, by default data/real of the shared folder beside the repository."""
-    default = Path(__file__).resolve().parents[2] / "shared" / "data" / "real"
-    return Path(os.environ.get("GUIDEWAY_FMU_DATA", default))
 
 
 @pytest.fixture(scope="session")

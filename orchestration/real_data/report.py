@@ -3,15 +3,16 @@ the authors' finding.
 
 Usage::
 
-    GUIDEWAY_FMU_REAL_RAW=/tmp/real_raw .venv/bin/python orchestration/real_data/report.py
+    GUIDEWAY_FMU_DATA=<real records> GUIDEWAY_FMU_REAL_RAW=<raw folders> \
+        .venv/bin/python orchestration/real_data/report.py
 
 Inputs, both from the environment or the command line, never a fixed path outside the repository:
 
 - ``--raw`` (default ``GUIDEWAY_FMU_REAL_RAW``): one subfolder of raw files per data set, named by
   the converter's short name (README.md of this folder says where to fetch them); a missing
   subfolder is reported on the page, not an error.
-- ``--data`` (default ``GUIDEWAY_FMU_DATA``, else the repository's sibling ``shared/data/real``,
-  as tests/conftest.py): the folder holding the converted EMPS runs ``emps-identification/`` and
+- ``--data`` (default ``GUIDEWAY_FMU_DATA``, the setting the tests read; refused when neither
+  is set): the folder holding the converted EMPS runs ``emps-identification/`` and
   ``emps-validation/`` (a folder holding ``real/`` with them is accepted too).
 
 Each record is converted into ``--work`` (default a new temporary folder), diagnosed by
@@ -554,10 +555,9 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--raw", type=Path, default=os.environ.get("GUIDEWAY_FMU_REAL_RAW"),
                         help="raw files, one subfolder per data set (default $GUIDEWAY_FMU_REAL_RAW)")
-    default_data = os.environ.get("GUIDEWAY_FMU_DATA", REPO.parent / "shared" / "data" / "real")
-    parser.add_argument("--data", type=Path, default=default_data,
+    parser.add_argument("--data", type=Path, default=os.environ.get("GUIDEWAY_FMU_DATA") or None,
                         help="folder with emps-identification/ and emps-validation/ "
-                             "(default $GUIDEWAY_FMU_DATA, else ../shared/data/real)")
+                             "(default $GUIDEWAY_FMU_DATA)")
     parser.add_argument("--work", type=Path, default=None, help="converted runs and diagnoses")
     parser.add_argument("--out", type=Path, default=REPO / "docs" / "real-data.md")
     parser.add_argument("--fmus", type=Path, default=None, help="FMU folder (default WORK/fmus)")
@@ -566,6 +566,9 @@ def main(argv=None) -> int:
     parser.add_argument("--no-reruns", action="store_true", help="leave out the seals' re-runs")
     parser.add_argument("--reuse", action="store_true", help="keep diagnoses found in --work")
     args = parser.parse_args(argv)
+    if args.data is None:
+        parser.error("the real records' folder is not given: set GUIDEWAY_FMU_DATA (or --data) "
+                     "to the folder holding emps-identification/ and emps-validation/")
     start = time.perf_counter()
     work = args.work or Path(tempfile.mkdtemp(prefix="guideway_real_"))
     fmus = args.fmus or work / "fmus"
@@ -611,7 +614,7 @@ def main(argv=None) -> int:
     wall = time.perf_counter() - start
     shown = ["python orchestration/real_data/report.py"] + (["--seals", *args.seals] if args.seals else []) + (
         ["--no-reruns"] if args.no_reruns else []) + (["--reuse"] if args.reuse else [])
-    command = "GUIDEWAY_FMU_REAL_RAW=<raw folders> " + " ".join(shown)
+    command = "GUIDEWAY_FMU_DATA=<real records> GUIDEWAY_FMU_REAL_RAW=<raw folders> " + " ".join(shown)
     write_page(records, missing, args.out, command, wall, SOURCES, stamp)
     print(f"wrote {args.out} ({len(records)} records, {wall / 60:.1f} min); work folder {work}")
     return 0

@@ -2,24 +2,18 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from guideway_fmu.analysis import feed_unit as fa
 from guideway_fmu.cli import main
+from support import ORCHESTRATION, write_file
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "orchestration" / "ball_guides"
+EXAMPLES = ORCHESTRATION / "ball_guides"
 VERTICAL = EXAMPLES / "zhang2019_vertical_10kN.toml"
 CUTTING = EXAMPLES / "zhang2019_cutting_offset.toml"
 BASE = VERTICAL.read_text()
-
-
-def write(tmp_path, text, name="unit.toml"):
-    path = tmp_path / name
-    path.write_text(text)
-    return path
 
 
 def test_json_gives_five_errors_and_four_sliders_for_both_models(capsys):
@@ -88,7 +82,7 @@ def test_contact_angle_sweep_covers_the_papers_range_by_default():
     (lambda t: t.replace("half_span_x = 0.100", "half_span_x = 0.1 0"), "not valid TOML"),
 ])
 def test_bad_feed_unit_file_is_refused_naming_file_and_key(tmp_path, capsys, edit, message):
-    path = write(tmp_path, edit(BASE))
+    path = write_file(tmp_path, edit(BASE), "unit.toml")
     assert main(["feed-unit", str(path)]) == 2
     err = capsys.readouterr().err
     assert str(path) in err and message in err, err

@@ -14,6 +14,7 @@ from guideway_fmu.cosim.fmu_instance import FmuInstance
 from guideway_fmu.cosim.run import run
 from guideway_fmu.physics.roller_guide import carriage, four_rows
 from guideway_fmu import scenarios
+from support import ORCHESTRATION, load_script, write_file
 
 RIG = """
 [experiment]
@@ -48,17 +49,11 @@ to_stiffness = "Carriage.K_contact"
 """
 
 
-def write(tmp_path, text, name="s.toml"):
-    path = tmp_path / name
-    path.write_text(text)
-    return path
-
-
 def rig(tmp_path, fmu_dir, stop=2e-3, step=1e-6, algorithm="stabilised", tolerance=0.0,
         load=0.0, stiffness="Contact.K_contact"):
     text = RIG.format(fmus=fmu_dir, stop=stop, step=step, algorithm=algorithm, load=load,
                       tolerance=tolerance, stiffness=stiffness)
-    return system.load(write(tmp_path, text))
+    return system.load(write_file(tmp_path, text, "s.toml"))
 
 
 # -- system descriptions ------------------------------------------------------------------
@@ -103,7 +98,7 @@ def test_load_reads_components_connections_tangents(tmp_path, fmu_dir):
 def test_load_errors_name_file_table_and_key(tmp_path, fmu_dir, edit, message):
     text = edit(RIG.format(fmus=fmu_dir, stop=2e-3, step=1e-6, algorithm="stabilised", load=0.0,
                            tolerance=0.0, stiffness="Contact.K_contact"))
-    path = write(tmp_path, text)
+    path = write_file(tmp_path, text, "s.toml")
     with pytest.raises(system.ScenarioError, match=message) as info:
         system.load(path)
     assert str(path) in str(info.value)
@@ -117,21 +112,13 @@ def test_load_missing_file_names_it(tmp_path):
 def test_fmu_dir_override_takes_fmus_by_name(tmp_path, fmu_dir):
     text = RIG.format(fmus="/nowhere", stop=2e-3, step=1e-6, algorithm="jacobi", load=0.0,
                       tolerance=0.0, stiffness="Contact.K_contact")
-    s = system.load(write(tmp_path, text), fmu_dir=fmu_dir)
+    s = system.load(write_file(tmp_path, text, "s.toml"), fmu_dir=fmu_dir)
     assert s.components["Contact"].fmu == fmu_dir / "ContactDryHertz.fmu"
 
 
 def _generators():
     """The scenario generators of orchestration/ (make_*_scenarios.py), as modules."""
-    import importlib.util
-    root = Path(__file__).parents[2] / "orchestration"
-    found = []
-    for path in sorted(root.glob("make_*_scenarios.py")):
-        spec = importlib.util.spec_from_file_location(path.stem, path)
-        gen = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(gen)
-        found.append((path, gen))
-    return found
+    return [(path, load_script(path)) for path in sorted(ORCHESTRATION.glob("make_*_scenarios.py"))]
 
 
 def _described(s: system.System) -> tuple:
@@ -330,7 +317,8 @@ to = "Probe.K_contact"
 @pytest.mark.parametrize("algorithm, tolerance", [("gauss-seidel", 0.0), ("stabilised", 1e-3)])
 def test_fmu_failure_mid_run_names_instance_time_and_log_and_keeps_the_recording(
         tmp_path, fmu_dir, algorithm, tolerance):
-    path = write(tmp_path, PROBE.format(fmus=fmu_dir, algorithm=algorithm, tolerance=tolerance))
+    path = write_file(tmp_path, PROBE.format(fmus=fmu_dir, algorithm=algorithm,
+                                             tolerance=tolerance), "s.toml")
     with pytest.raises(master.SimulationError) as info:
         run(system.load(path), tmp_path / "out", progress=False)
     message = str(info.value)

@@ -55,13 +55,14 @@ def compile_harmonic_force(folder: Path) -> Path:
 
 
 @pytest.fixture(scope="module")
-def scenario(fmu_dir):
+def shipped(fmu_dir):
+    """The shipped scenario SCENARIO, loaded with the session's FMUs."""
     return system.load(scenarios.find(SCENARIO), fmu_dir)
 
 
 @pytest.fixture(scope="module")
-def packed(scenario, tmp_path_factory):
-    return export_fmu(scenario, tmp_path_factory.mktemp("packed") / "Loaded.fmu")
+def packed(shipped, tmp_path_factory):
+    return export_fmu(shipped, tmp_path_factory.mktemp("packed") / "Loaded.fmu")
 
 
 @pytest.fixture(scope="module")
@@ -69,9 +70,9 @@ def force(tmp_path_factory):  # the tests that use it are marked needs_cc
     return compile_harmonic_force(tmp_path_factory.mktemp("harmonic_force"))
 
 
-def unpacked_with_force(scenario, force: Path, folder: Path) -> system.System:
-    """The scenario with HarmonicForce's F on Carriage.F_ext, run for STOP."""
-    system.dump(scenario, folder / "unpacked.toml")
+def unpacked_with_force(shipped, force: Path, folder: Path) -> system.System:
+    """``shipped`` with HarmonicForce's F on Carriage.F_ext, run for STOP."""
+    system.dump(shipped, folder / "unpacked.toml")
     data = tomllib.loads((folder / "unpacked.toml").read_text())
     data["components"]["Force"] = {"fmu": str(force)}
     data["connections"].append({"from": "Force.F", "to": "Carriage.F_ext"})
@@ -89,24 +90,24 @@ def packed_with_force(packed: Path, force: Path, algorithm: str = "gauss-seidel"
 
 
 def test_the_packed_fmu_validates_clean_and_declares_the_systems_free_inputs_outputs_and_parameters(
-        packed, scenario):
+        packed, shipped):
     assert validate_fmu(str(packed)) == []
     md = fmpy.read_model_description(str(packed))
     by = {v.name: v for v in md.modelVariables}
     assert sorted(n for n, v in by.items() if v.causality == "input") == ["Carriage.F_ext", "Feed.u_cmd"]
-    outputs = [f"{i}.{n}" for i, vs in scenario.variables.items() for n, v in vs.items()
+    outputs = [f"{i}.{n}" for i, vs in shipped.variables.items() for n, v in vs.items()
                if v.causality == "output"]
     assert [n for n, v in by.items() if v.causality == "output"] == outputs
     assert float(by["Carriage.load_amplitude"].start) == 9000.0  # the scenario's value
-    assert float(by["Carriage.mass"].start) == float(scenario.variables["Carriage"]["mass"].start)
+    assert float(by["Carriage.mass"].start) == float(shipped.variables["Carriage"]["mass"].start)
     assert by["Feed.profile"].type == "String" and by["Feed.profile"].start == "biharmonic"
     for name in outputs:
         inst, var = name.split(".", 1)
-        inner = scenario.variables[inst][var]
+        inner = shipped.variables[inst][var]
         assert (by[name].unit, by[name].description) == (inner.unit, inner.description)
     assert md.coSimulation.modelIdentifier == SCENARIO
     exp = md.defaultExperiment
-    assert (float(exp.stopTime), float(exp.stepSize)) == (scenario.experiment.stop, STEP)
+    assert (float(exp.stopTime), float(exp.stepSize)) == (shipped.experiment.stop, STEP)
 
 
 @needs_cc
@@ -116,8 +117,8 @@ def test_the_c_fmu_validates_clean(force):
 
 @needs_cc
 def test_packed_equals_unpacked_bit_for_bit_in_our_master_next_to_the_c_fmu(
-        scenario, packed, force, tmp_path):
-    unpacked = master.simulate(unpacked_with_force(scenario, force, tmp_path)).recording
+        shipped, packed, force, tmp_path):
+    unpacked = master.simulate(unpacked_with_force(shipped, force, tmp_path)).recording
     result = master.simulate(packed_with_force(packed, force))
     assert result.steps == 400
     for name in WATCHED:
@@ -125,7 +126,7 @@ def test_packed_equals_unpacked_bit_for_bit_in_our_master_next_to_the_c_fmu(
     assert np.ptp(unpacked.columns["Contact.F_upper"]) > 500.0  # the loads do oscillate
 
 
-def test_a_communication_step_of_ten_inner_steps_gives_the_same_trajectory(scenario, packed):
+def test_a_communication_step_of_ten_inner_steps_gives_the_same_trajectory(shipped, packed):
     """Inputs constant: the inner master takes the same steps whatever the communication step;
     the FMUs' time differs in the last bits (t + h summed inside or outside), hence rtol 1e-12."""
     runs = [fmpy.simulate_fmu(str(packed), stop_time=STOP, step_size=h, output_interval=h,
@@ -311,11 +312,11 @@ def test_two_packed_fmus_and_two_instances_of_one_run_side_by_side_as_each_alone
     assert not np.array_equal(together["A.Contact.F_upper"], together["B.Contact.F_upper"])
 
 
-def test_parameters_set_on_the_packed_fmu_reach_its_inner_fmus(scenario, packed):
+def test_parameters_set_on_the_packed_fmu_reach_its_inner_fmus(shipped, packed):
     """A Real and a String parameter changed on the packed FMU: the run equals the unpacked
     scenario with the same changes, bit for bit."""
     changes = {"Carriage": {"load_amplitude": 3000.0}, "Feed": {"profile": "constant"}}
-    unpacked = master.simulate(scenario.with_changes(parameters=changes, stop=100 * STEP))
+    unpacked = master.simulate(shipped.with_changes(parameters=changes, stop=100 * STEP))
     b = system.Builder("changed").experiment(stop=100 * STEP, step=STEP)
     b.component("Rig", packed, **{f"{i}.{k}": v for i, ps in changes.items() for k, v in ps.items()})
     result = master.simulate(b.record([f"Rig.{w}" for w in WATCHED]).system())
@@ -356,12 +357,12 @@ def test_the_packed_fmu_gets_and_sets_its_state_as_its_inner_fmus_do(packed, tmp
     fmu.freeInstance()
 
 
-def test_a_scenario_exports_again_after_its_packed_fmu_ran_in_this_process(scenario, packed,
+def test_a_scenario_exports_again_after_its_packed_fmu_ran_in_this_process(shipped, packed,
                                                                           tmp_path):
     """The packed FMU's modules (same code hash) are loaded here by the tests before; the build
     must import its own copy, not those (pythonfmu's builder found no slave class then)."""
     fmpy.simulate_fmu(str(packed), stop_time=STEP, step_size=STEP)
-    again = export_fmu(scenario, tmp_path / packed.name)  # the name is in its scenario's header
+    again = export_fmu(shipped, tmp_path / packed.name)  # the name is in its scenario's header
     assert validate_fmu(str(again)) == []
     with zipfile.ZipFile(packed) as a, zipfile.ZipFile(again) as b:
         assert sorted(a.namelist()) == sorted(b.namelist())  # the same package name: same code

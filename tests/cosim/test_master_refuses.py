@@ -13,6 +13,7 @@ from pythonfmu.builder import FmuBuilder
 
 from guideway_fmu.fmu_build import exit_patch
 from guideway_fmu.cosim import master, system
+from support import write_file
 
 PROBE = '''
 from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
@@ -49,7 +50,9 @@ def probe_fmu(tmp_path_factory):
         script, dest=folder / "Probe.fmu", canHandleVariableCommunicationStepSize=False))
 
 
-def scenario(tmp_path, fmu, extra="", experiment="stop = 0.01\nstep = 0.001", record='"A.x"'):
+def probe_scenario(tmp_path, fmu, extra="", experiment="stop = 0.01\nstep = 0.001", record='"A.x"'):
+    """probe.toml in ``tmp_path``: two instances A, B of ``fmu``, A.x -> B.u (``extra``: more
+    connections), the ``experiment`` table's body, A.x (``record``) recorded; its path."""
     text = textwrap.dedent(f"""\
         name = "probe"
         connections = [{{ from = "A.x", to = "B.u" }}{extra}]
@@ -66,13 +69,11 @@ def scenario(tmp_path, fmu, extra="", experiment="stop = 0.01\nstep = 0.001", re
         [record]
         variables = [{record}]
         """)
-    path = tmp_path / "probe.toml"
-    path.write_text(text)
-    return path
+    return write_file(tmp_path, text, "probe.toml")
 
 
 def test_a_probe_that_fits_runs_at_constant_steps(tmp_path, probe_fmu):
-    result = master.simulate(system.load(scenario(tmp_path, probe_fmu)))
+    result = master.simulate(system.load(probe_scenario(tmp_path, probe_fmu)))
     assert np.allclose(np.diff(result.recording.time), 0.001, rtol=1e-9, atol=0.0)
     assert result.recording.time[-1] == pytest.approx(0.01, rel=1e-12)
 
@@ -91,12 +92,12 @@ def test_a_probe_that_fits_runs_at_constant_steps(tmp_path, probe_fmu):
 def test_what_the_master_cannot_do_is_refused_naming_table_key_and_fmu(tmp_path, probe_fmu,
                                                                         kwargs, message):
     with pytest.raises(system.ScenarioError, match=message):
-        system.load(scenario(tmp_path, probe_fmu, **kwargs))
+        system.load(probe_scenario(tmp_path, probe_fmu, **kwargs))
 
 
 @pytest.mark.parametrize("value", [2**31, -2**31 - 1, 4294967316])
 def test_integer_outside_fmis_32_bit_range_is_refused_not_wrapped(tmp_path, probe_fmu, value):
-    path = scenario(tmp_path, probe_fmu)
+    path = probe_scenario(tmp_path, probe_fmu)
     path.write_text(path.read_text() + f"\n[components.A.parameters]\nn = {value}\n")
     with pytest.raises(system.ScenarioError,
                        match=rf"\[components.A.parameters\] key 'n': Integer variable cannot "

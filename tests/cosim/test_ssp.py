@@ -29,8 +29,7 @@ LIBCOSIM = {**BASE, "Feed": {"profile": "oscillating", "mean_velocity": 0.0, "fr
 FMPY = {**BASE, "Feed": {"phase1": 0.0, "phase2": 0.0}}  # biharmonic; both profiles: u(0) = 0
 FRICTION_INPUTS = [("Feed.u", "u")] + [(f"Contact.{v}", v)
                                        for v in ("F_upper", "F_lower", "h_upper", "h_lower")]
-WIRES = [("Feed.u", "Contact.u"), ("Carriage.y", "Contact.y"), ("Carriage.y_dot", "Contact.y_dot"),
-         ("Contact.F_contact", "Carriage.F_contact")] + [
+WIRES = [("Feed.u", "Contact.u"), *scenarios.coupling()] + [
     (src, f"{inst}.{var}") for inst in ("Friction", "Rough") for src, var in FRICTION_INPUTS]
 FMUS = {"Feed": "FeedKinematics", "Contact": "ContactEHL", "Carriage": "VerticalDynamics",
         "Friction": "FrictionMixedEHL", "Rough": "FrictionMixedEHL"}  # two instances, one file

@@ -1,5 +1,5 @@
-"""The workflow on the real EMPS records (found through GUIDEWAY_FMU_DATA, conftest.py), through the
-command line.
+"""The workflow on the real EMPS records (found through GUIDEWAY_FMU_DATA, tests/support.py), through
+the command line.
 
 Independent reference: Janot, Gautier & Brunot (2019) identify the EMPS axis with the inverse
 dynamic model and least squares on the same data: M = 95.1 kg (the rig.toml's mass), viscous
@@ -18,30 +18,26 @@ import sys
 import numpy as np
 import pytest
 
-from conftest import real_data_folder
-
 from guideway_fmu.physics.rigs.friction_laws import stribeck_friction
+from support import real_record, real_records
 
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
 
-REAL = real_data_folder()
 PUBLISHED = {"viscous": 203.5, "coulomb": 20.39, "offset": -3.16}
 
 
-@pytest.mark.skipif(not (REAL / "emps-validation").is_dir(),
-                    reason=f"EMPS data not present in {REAL} (set GUIDEWAY_FMU_DATA)")
 def test_emps_validation_viscous_and_coulomb_match_published_identification(fmu_dir, tmp_path):
+    record = real_record("emps-validation")
     out = tmp_path / "out"
     done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "diagnose",
-                           str(REAL / "emps-validation"), "--out", str(out), "--fmus", str(fmu_dir)],
+                           str(record), "--out", str(out), "--fmus", str(fmu_dir)],
                           capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr[-2000:]
     diagnosis = json.loads((out / "diagnosis.json").read_text())
     lubrication = diagnosis["candidates"][0]
     assert lubrication["effect"] == "lubrication"  # speed-dependent friction explains most
     fitted = lubrication["parameters"]
-    position = np.loadtxt(REAL / "emps-validation" / "data.csv", delimiter=",", skiprows=1,
-                          usecols=1)
+    position = np.loadtxt(record / "data.csv", delimiter=",", skiprows=1, usecols=1)
     speed = np.abs(np.gradient(position, 1e-3))
     speed = speed[speed > 0.01]  # moving (1 kHz record)
     ours = -stribeck_friction(speed, fitted["coulomb"], fitted["static"],
@@ -61,8 +57,9 @@ def test_emps_validation_viscous_and_coulomb_match_published_identification(fmu_
 def test_cli_diagnose_bad_run_exits_2_naming_file_and_row(tmp_path):
     run = tmp_path / "run"
     run.mkdir()
-    (run / "rig.toml").write_text((REAL / "emps-validation" / "rig.toml").read_text()
-                                  if (REAL / "emps-validation").is_dir() else
+    emps = real_records()
+    (run / "rig.toml").write_text((emps / "emps-validation" / "rig.toml").read_text()
+                                  if emps is not None and (emps / "emps-validation").is_dir() else
                                   'format = "guideway-measured-run/1"\n')
     (run / "data.csv").write_text("time,feed_position,drive_force\n0,0,1\n0.001,nan,2\n")
     done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "diagnose", str(run),

@@ -21,7 +21,9 @@ outputs = ["drive_force"]
 """
 
 
-def write(tmp_path, rig=RIG, rows=None, header="time,feed_velocity,drive_force"):
+def write_short_run(tmp_path, rig=RIG, rows=None, header="time,feed_velocity,drive_force"):
+    """``rig`` as rig.toml and ``rows`` (default: 60 samples of a sine stroke) under ``header`` as
+    data.csv into ``tmp_path``; the folder."""
     t = np.arange(60) * 1e-3
     rows = rows or [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},{np.sign(np.cos(20 * a)):.3f}" for a in t]
     (tmp_path / "rig.toml").write_text(rig)
@@ -38,13 +40,13 @@ def refused(run_dir, *fragments, kind=ValueError):
 
 
 def test_valid_run_is_read(tmp_path):
-    run = load_run(write(tmp_path))
+    run = load_run(write_short_run(tmp_path))
     assert run.channel == "drive_force" and run.time.size == 60
 
 
 def test_missing_files_name_them(tmp_path):
     refused(tmp_path / "nope", "nope", kind=FileNotFoundError)
-    write(tmp_path)
+    write_short_run(tmp_path)
     (tmp_path / "data.csv").unlink()
     refused(tmp_path, "data.csv", kind=FileNotFoundError)
 
@@ -52,7 +54,7 @@ def test_missing_files_name_them(tmp_path):
 @pytest.mark.parametrize("cell, text", [("nan", "nan"), ("", "empty cell"), ("inf", "inf"),
                                         ("abc", "abc")])
 def test_bad_cell_names_row_and_column(tmp_path, cell, text):
-    run = write(tmp_path)
+    run = write_short_run(tmp_path)
     lines = (run / "data.csv").read_text().splitlines()
     parts = lines[7].split(",")
     parts[2] = cell
@@ -62,7 +64,7 @@ def test_bad_cell_names_row_and_column(tmp_path, cell, text):
 
 
 def test_non_increasing_time_names_row(tmp_path):
-    run = write(tmp_path)
+    run = write_short_run(tmp_path)
     lines = (run / "data.csv").read_text().splitlines()
     lines[11] = lines[10]
     (run / "data.csv").write_text("\n".join(lines) + "\n")
@@ -70,12 +72,12 @@ def test_non_increasing_time_names_row(tmp_path):
 
 
 def test_missing_output_column_names_key(tmp_path):
-    refused(write(tmp_path, header="time,feed_velocity,friction_force"), "rig.toml", "outputs",
+    refused(write_short_run(tmp_path, header="time,feed_velocity,friction_force"), "rig.toml", "outputs",
             "'drive_force'")
 
 
 def test_unknown_component_names_key(tmp_path):
-    refused(write(tmp_path, rig=RIG.replace('"coulomb"', '"magic"')), "rig.toml",
+    refused(write_short_run(tmp_path, rig=RIG.replace('"coulomb"', '"magic"')), "rig.toml",
             "[model] key 'friction'", "magic")
 
 
@@ -87,9 +89,9 @@ element_radius = 2.5e-3
 roller_length = 8e-3
 preload = 9200.0
 """
-    refused(write(tmp_path, rig=rig), "rig.toml", "[lubricant]")
+    refused(write_short_run(tmp_path, rig=rig), "rig.toml", "[lubricant]")
     rig += "[lubricant]\nviscosity = 0.1\n[surface]\nroughness_rms = 1e-7\n"
-    refused(write(tmp_path, rig=rig), "rig.toml", "'pressure_viscosity'", "[lubricant]")
+    refused(write_short_run(tmp_path, rig=rig), "rig.toml", "'pressure_viscosity'", "[lubricant]")
 
 
 @pytest.mark.parametrize("entry, key", [("rows = 0", "rows"), ("elements_per_row = 2.5",
@@ -99,19 +101,19 @@ preload = 9200.0
                                         ("contact_angle_deg = 95.0", "contact_angle_deg")])
 def test_impossible_guideway_numbers_name_the_key(tmp_path, entry, key):
     # a zero row count would divide the preload by zero further on
-    refused(write(tmp_path, RIG + f"[guideway]\n{entry}\n"), "rig.toml", f"[guideway] key '{key}'")
+    refused(write_short_run(tmp_path, RIG + f"[guideway]\n{entry}\n"), "rig.toml", f"[guideway] key '{key}'")
 
 
 def test_bad_format_and_mass_name_key(tmp_path):
-    refused(write(tmp_path, rig=RIG.replace("/1", "/2")), "rig.toml", "'format'")
-    refused(write(tmp_path, rig=RIG.replace("3.2", "-1.0")), "rig.toml", "moving_mass")
+    refused(write_short_run(tmp_path, rig=RIG.replace("/1", "/2")), "rig.toml", "'format'")
+    refused(write_short_run(tmp_path, rig=RIG.replace("3.2", "-1.0")), "rig.toml", "moving_mass")
 
 
 def test_column_outside_vocabulary_warns_naming_it(tmp_path):
     t = np.arange(60) * 1e-3
     rows = [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},1.0,{a}" for a in t]
     with pytest.warns(UserWarning, match="temperature"):
-        run = load_run(write(tmp_path, rows=rows, header="time,feed_velocity,drive_force,temperature"))
+        run = load_run(write_short_run(tmp_path, rows=rows, header="time,feed_velocity,drive_force,temperature"))
     assert "temperature" not in run.columns
 
 
@@ -201,7 +203,7 @@ def test_friction_sign_without_a_friction_channel_is_refused(tmp_path):
 
 @pytest.mark.parametrize("name", ["data.csv", "rig.toml"])
 def test_a_file_that_is_not_utf8_names_its_line_and_byte(tmp_path, name):
-    run = write(tmp_path)
+    run = write_short_run(tmp_path)
     path = run / name
     lines = path.read_bytes().split(b"\n")
     lines[2] = lines[2] + b" \xe9"  # a Latin-1 e-acute on line 3
@@ -256,10 +258,10 @@ def test_vertical_displacement_in_millimetres_is_refused_against_the_element_rad
         '["drive_force"]', '["vertical_displacement"]') + "[guideway]\nelement_radius = 2.5e-3\n"
     t = np.arange(60) * 1e-3
     rows = [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},{1e-3 * np.sin(900 * a):.6f}" for a in t]  # 1 um in mm
-    path = write(tmp_path, rig=rig, rows=rows, header="time,feed_velocity,vertical_displacement")
+    path = write_short_run(tmp_path, rig=rig, rows=rows, header="time,feed_velocity,vertical_displacement")
     refused(path, "data.csv", "'vertical_displacement'", "element_radius", "mm")
     rows = [f"{a:.4f},{0.1 * np.sin(20 * a):.6f},{1e-6 * np.sin(900 * a):.9f}" for a in t]
-    assert load_run(write(tmp_path, rig=rig, rows=rows,
+    assert load_run(write_short_run(tmp_path, rig=rig, rows=rows,
                           header="time,feed_velocity,vertical_displacement")).time.size == 60
 
 

@@ -282,7 +282,6 @@ def test_acceleration_on_short_ramps_takes_shorter_windows_there_against_true_mo
     # and would flatten their acceleration peaks; the ICI rule shortens it at the blends only
     t = np.arange(4000) * 1e-3
     period, blend, speed = 0.5, 0.012, 0.05
-    phase = np.mod(t, period)
     # velocity: +speed, a cosine blend to -speed at period / 2, back at period
     def velocity(p):
         out = np.where(p < period / 2, speed, -speed)

@@ -9,9 +9,7 @@ loading, which take a few seconds.
 """
 from __future__ import annotations
 
-import importlib.util
 import os
-import sys
 import warnings
 from pathlib import Path
 
@@ -19,8 +17,9 @@ import numpy as np
 import pytest
 
 from guideway_fmu.diagnose.run_io import load_run
+from support import ORCHESTRATION, load_script
 
-CONVERTERS = Path(__file__).resolve().parents[2] / "orchestration" / "real_data"
+CONVERTERS = ORCHESTRATION / "real_data"
 RAW = os.environ.get("GUIDEWAY_FMU_REAL_RAW")
 
 #: short name -> (least number of runs, output channel, moving_mass, stated friction sign)
@@ -31,11 +30,8 @@ EXPECTED = {
 
 
 def converter(short_name: str):
-    path = CONVERTERS / f"convert_{short_name}.py"
-    spec = importlib.util.spec_from_file_location(f"convert_{short_name}", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    """The converter of the data set ``short_name`` as a module."""
+    return load_script(CONVERTERS / f"convert_{short_name}.py")
 
 
 def raw_folder(short_name: str) -> Path:
@@ -83,13 +79,19 @@ def test_converter_refuses_a_folder_without_its_files(tmp_path):
             converter(short_name).convert(tmp_path, tmp_path / "out")
 
 
-def test_report_recovers_the_level_and_the_even_slope_of_a_known_record(tmp_path, monkeypatch):
+def test_report_refuses_to_run_without_the_real_records_folder_naming_the_setting(monkeypatch,
+                                                                                 capsys):
+    monkeypatch.delenv("GUIDEWAY_FMU_DATA", raising=False)
+    with pytest.raises(SystemExit) as exit_:
+        load_script(CONVERTERS / "report.py").main([])
+    assert exit_.value.code == 2
+    assert "set GUIDEWAY_FMU_DATA (or --data)" in capsys.readouterr().err
+
+
+def test_report_recovers_the_level_and_the_even_slope_of_a_known_record(tmp_path):
     """report.py's own numbers beside the workflow's: the authors' friction range (2 Fc) and the
     slope of a force that does not turn with the motion, on strokes with both known."""
-    spec = importlib.util.spec_from_file_location("real_data_report", CONVERTERS / "report.py")
-    report = importlib.util.module_from_spec(spec)
-    monkeypatch.setitem(sys.modules, spec.name, report)  # its dataclass looks itself up there
-    spec.loader.exec_module(report)
+    report = load_script(CONVERTERS / "report.py")
     time = np.arange(0.0, 8.0, 0.01)
     position = 0.02 * (1.0 - np.cos(2.0 * np.pi * time / 2.0))  # 40 mm strokes
     moving_out = np.sin(2.0 * np.pi * time / 2.0) > 0.0

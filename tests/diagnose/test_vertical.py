@@ -9,6 +9,8 @@ import math
 import numpy as np
 import pytest
 
+from guideway_fmu import scenarios
+from guideway_fmu.cosim.system import Builder
 from guideway_fmu.diagnose import truth_vertical, vertical
 from guideway_fmu.diagnose.run_io import load_run
 from guideway_fmu.diagnose.vertical import VerticalRig, decide_vertical
@@ -135,6 +137,14 @@ def test_fused_vertical_model_refuses_other_wiring_or_a_damped_contact_naming_it
                                                                           "damping": 10.0})})
     with pytest.raises(ValueError, match="'Contact' parameter damping"):
         FusedVertical(damped)
+
+
+def test_vertical_rig_refuses_a_contact_it_does_not_model_naming_it(tmp_path):
+    b = Builder("rig")
+    with pytest.raises(ValueError, match="contact 'FrictionCoulomb' is not one of "
+                                         "ContactDryHertz, ContactEHL"):
+        scenarios.vertical_rig(b, tmp_path, "FrictionCoulomb", tmp_path / "replay.csv",
+                               tmp_path / "load.csv", {}, {})
 
 
 def test_free_vibration_peak_is_read_off_a_known_sine_beside_the_load_line(tmp_path, record,

@@ -14,13 +14,12 @@ from guideway_fmu.cosim import master, system
 from guideway_fmu.physics.roller_guide import carriage, four_rows
 from guideway_fmu.physics.rigs import feed_motion
 
-RIG_WIRING = [("Carriage.y", "Contact.y"), ("Carriage.y_dot", "Contact.y_dot"),
-              ("Contact.F_contact", "Carriage.F_contact")]
+RIG_WIRING = scenarios.coupling()
 FRICTION_WIRING = [("Feed.u", "Friction.u"), *((f"Contact.{v}", f"Friction.{v}")
                                                for v in ("F_upper", "F_lower", "h_upper", "h_lower"))]
 
 
-def scenario(path, fmu_dir, components, connections, stop, step=1e-6):
+def built_scenario(path, fmu_dir, components, connections, stop, step=1e-6):
     """Write and load a scenario; ``components`` maps instance -> (FMU file or name, parameters)."""
     b = system.Builder(path.stem).experiment(start=0.0, stop=stop, step=step)
     for name, (fmu, params) in components.items():
@@ -32,7 +31,7 @@ def scenario(path, fmu_dir, components, connections, stop, step=1e-6):
 
 def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_dir, tmp_path):
     mass, preload = 2.5, 8000.0
-    rig = scenario(tmp_path / "dry.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / "dry.toml", fmu_dir, {
         "Carriage": ("VerticalDynamics", {"mass": mass, "gravity": 0.0, "y_start": 1e-9}),
         "Contact": ("ContactDryHertz", {"preload": preload})}, RIG_WIRING, stop=3e-3)
     ref = monolithic.simulate(rig)
@@ -51,7 +50,7 @@ def test_small_oscillation_of_dry_contact_has_the_linear_natural_frequency(fmu_d
 def test_start_offset_moves_every_state_by_that_fraction_of_its_nominal_scale(fmu_dir, tmp_path):
     # independent check: the carriage's nominal scales (physics/roller_guide/carriage.py), 1.04e-6 m and
     # 0.043 m/s, times the offset, added to its start (y_start, at rest)
-    rig = scenario(tmp_path / "dry.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / "dry.toml", fmu_dir, {
         "Carriage": ("VerticalDynamics", {"gravity": 0.0, "y_start": 1e-9}),
         "Contact": ("ContactDryHertz", {})}, RIG_WIRING, stop=1e-5)
     ref = monolithic.simulate(rig, start_offset=1e-3)
@@ -71,7 +70,7 @@ def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, c
         return body.mass * body.gravity + load - float(four_rows.net_force(g, f_u, f_l))
 
     y_eq = brentq(residual, 0.0, 1e-5, xtol=1e-22, rtol=1e-15)
-    rig = scenario(tmp_path / "static.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / "static.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {"profile": "constant", "velocity": u}),
         "Contact": (contact, {"film_model": film_model} if film_model else {}),
         "Carriage": ("VerticalDynamics", {"load_static": load, "y_start": y_eq}),
@@ -85,7 +84,7 @@ def test_body_started_at_the_static_equilibrium_stays_there(fmu_dir, tmp_path, c
 
 
 def test_tighter_tolerance_changes_the_loaded_rig_little(fmu_dir, tmp_path):
-    rig = scenario(tmp_path / "loaded.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / "loaded.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {}), "Contact": ("ContactEHL", {}),
         "Carriage": ("VerticalDynamics", {"load_amplitude": 9000.0, "load_frequency": 4500.0}),
         "Friction": ("FrictionMixedEHL", {}),
@@ -106,7 +105,7 @@ def test_film_relaxes_to_the_steady_film_at_constant_feed_velocity(fmu_dir, tmp_
     """The body, started at y = 0 with the films steady there, settles under a static load
     (contact damping); the films follow the changed roller loads to their new steady values."""
     u = 0.29
-    rig = scenario(tmp_path / "film.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / "film.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {"profile": "constant", "velocity": u}),
         "Contact": ("ContactEHL", {"damping": 2e4}),
         "Carriage": ("VerticalDynamics", {"load_static": 20000.0}),
@@ -152,14 +151,14 @@ def test_unsupported_component_or_wiring_is_refused_naming_the_component(fmu_dir
         wiring[wiring.index(("Carriage.y", "Contact.y"))] = ("Carriage.y_ddot", "Contact.y")
     else:
         components["Contact"] = ("ContactEHL", {"damping": -1.0})
-    rig = scenario(tmp_path / f"{case}.toml", fmu_dir, components, wiring, stop=1e-4)
+    rig = built_scenario(tmp_path / f"{case}.toml", fmu_dir, components, wiring, stop=1e-4)
     with pytest.raises(ValueError, match=message):
         monolithic.simulate(rig)
 
 
 def test_generic_assembly_unconnected_force_is_free_fall_hand_calculation(fmu_dir, tmp_path):
     # F_contact unconnected stays at its start value 0: y = v0 t + g t^2 / 2.
-    rig = scenario(tmp_path / "fall.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / "fall.toml", fmu_dir, {
         "Carriage": ("VerticalDynamics", {"y_dot_start": 0.1})}, [], stop=1e-2, step=1e-3)
     ref = monolithic.simulate(rig)
     t = ref.time
@@ -171,7 +170,7 @@ def test_generic_assembly_horizontal_rig_drive_force_hand_calculation(fmu_dir, t
     # A rig of the discrepancy workflow: Coulomb friction at constant loads against the
     # bi-harmonic feed, drive_force = m a + mu 2N (F_U + F_L) s(u) + offset.
     mass, mu, load, offset = 3.0, 0.01, 200.0, 1.5
-    rig = scenario(tmp_path / "rig.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / "rig.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {}),
         "Friction": ("FrictionCoulomb", {"coefficient": mu, "F_upper": load, "F_lower": load}),
         "Rig": ("HorizontalRig", {"mass": mass, "drive_offset": offset})},
@@ -197,8 +196,9 @@ def test_fast_feed_velocity_equals_the_profile(profile):
 
 
 def test_times_must_increase_from_the_start(fmu_dir, tmp_path):
-    rig = scenario(tmp_path / "t.toml", fmu_dir, {"Contact": ("ContactDryHertz", {}),
-                                                  "Carriage": ("VerticalDynamics", {})}, RIG_WIRING, stop=1e-4)
+    rig = built_scenario(tmp_path / "t.toml", fmu_dir, {"Contact": ("ContactDryHertz", {}),
+                                                        "Carriage": ("VerticalDynamics", {})},
+                         RIG_WIRING, stop=1e-4)
     ref = monolithic.simulate(rig, times=[2e-5, 5e-5])
     np.testing.assert_array_equal(ref.time, [2e-5, 5e-5])
     for times in ([-1e-5, 5e-5], [5e-5, 2e-5]):
@@ -207,7 +207,7 @@ def test_times_must_increase_from_the_start(fmu_dir, tmp_path):
 
 
 def _effect_rig(tmp_path, fmu_dir, fmu, params, stop=0.02, velocity=0.05):
-    return scenario(tmp_path / f"{fmu}.toml", fmu_dir, {
+    return built_scenario(tmp_path / f"{fmu}.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {"profile": "constant", "velocity": velocity}),
         "Friction": (fmu, {"coefficient": 0.01, "F_upper": 100.0, "F_lower": 50.0,
                            "rollers_per_groove": 10, **params}),
@@ -241,7 +241,7 @@ def test_preload_loss_rig_follows_the_running_distance_hand_calculation(fmu_dir,
 def test_verify_covers_the_diagnosers_rigs_cross_tool(fmu_dir, tmp_path, fmu, params):
     # the co-simulation (exact path updates per step, Jacobi) against the reference (LSODA on
     # the derivatives) under an oscillating feed with reversals
-    rig = scenario(tmp_path / f"{fmu}.toml", fmu_dir, {
+    rig = built_scenario(tmp_path / f"{fmu}.toml", fmu_dir, {
         "Feed": ("FeedKinematics", {"profile": "oscillating", "mean_velocity": 0.0,
                                     "frequency": 20.0}),
         "Friction": (fmu, {"coefficient": 0.01, "F_upper": 100.0, "F_lower": 50.0,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..cosim.system import read_toml as read  # the parsed TOML; a ValueError naming the file
+from ..cosim.system import read_toml as read  # noqa: F401 - input_file.read: the parsed TOML, a ValueError naming the file
 
 
 def table(path, data: dict, name: str, required: bool = True) -> dict:

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..numerics.spectrum import spectrum
+from ..numerics.spectrum import power_spectrum, spectrum
 from ..physics.papers import soleimanian2020 as paper
 from ..physics.papers.soleimanian2020 import RIG_SPEED
 from ..physics.roller_guide import carriage, four_rows, friction, greenwood_tripp
@@ -95,17 +95,15 @@ def film_to_solid_stiffness(g: four_rows.Guideway) -> float:
 
 def band_share(time, values, low: float, high: float) -> float:
     """Share of the variance of ``values`` (on an even grid of ``time``) between ``low`` and
-    ``high`` [Hz]."""
-    v = np.asarray(values, dtype=float) - np.mean(values)
-    power = np.abs(np.fft.rfft(v)) ** 2
-    f = np.fft.rfftfreq(v.size, float(time[1] - time[0]))
+    ``high`` [Hz]: the band's part of their power spectrum (numerics.spectrum)."""
+    f, power = power_spectrum(time, values)
     inside = (f >= low) & (f <= high)
     return float(power[inside].sum() / max(power[1:].sum(), 1e-300))
 
 
 def spectrum_peak(time, values, low: float, high: float) -> tuple[float, float]:
     """(frequency [Hz], amplitude) of the largest line of ``values`` between ``low`` and ``high``
-    [Hz] in their amplitude spectrum (cosim.plots.spectrum)."""
+    [Hz] in their amplitude spectrum (numerics.spectrum)."""
     f, amplitude = spectrum(time, values)
     inside = np.flatnonzero((f >= low) & (f <= high))
     best = inside[np.argmax(amplitude[inside])]

@@ -25,12 +25,14 @@ import numpy as np
 from scipy import sparse
 from scipy.optimize import lsq_linear, minimize_scalar
 
+from ..numerics.spectrum import spectrum
 from ..physics.ball_guides import ball_row
 from ..physics.rigs import friction_laws
 from ..physics.ball_guides import ball_to_ball as b2b
 from ..physics.roller_guide.friction import CoulombParams, coulomb_friction
 from ..physics.dynamics import regularised_sign
 from .run_io import REDUCED_MODULUS, MeasuredRun
+from . import scoring
 from .signals import SIGN_WIDTH, Derivation, Motion, smooth_channel
 
 SMOOTHING = 1e-3  # weight of the smoothness penalty of the table candidates
@@ -190,17 +192,11 @@ class Candidate:
         penalty = self.penalty(rows[:, :-1])
         coef = least_squares(rows, rhs, np.column_stack([penalty, np.zeros(len(penalty))]))
         rss = float(np.sum((rows @ coef - rhs) ** 2))
-        return self._bic(rss, int(fit_mask.sum()), self.dof(coef, setting)), coef, design
+        return scoring.bic(rss, int(fit_mask.sum()), self.dof(coef, setting)), coef, design
 
     def dof(self, coef: np.ndarray, setting: dict) -> int:
         """Parameters a fit with these coefficients (offset last) and setting counts."""
         return coef.size + len(setting)
-
-    @staticmethod
-    def _bic(rss, n, k) -> float:
-        """BIC of a least-squares fit: residual sum of squares ``rss`` over ``n`` samples, ``k``
-        parameters (linear coefficients and settings)."""
-        return n * np.log(max(rss, 1e-300) / n) + k * np.log(n)
 
     def _refine(self, ctx, fit_mask, grid, best):
         """Each key of ``continuous`` of the best grid setting, in turn, to the BIC minimum on
@@ -351,7 +347,7 @@ class PreslidingHysteresis(Candidate):
         coef = np.linalg.lstsq(g, b, rcond=None)[0]  # a state may repeat another or the ones
         rss = float(power - 2.0 * coef @ b + coef @ g @ coef)
         design = with_offset(self.columns(ctx, setting))
-        return self._bic(rss, int(fit_mask.sum()), design.shape[1] + len(setting)), coef, design
+        return scoring.bic(rss, int(fit_mask.sum()), design.shape[1] + len(setting)), coef, design
 
     @staticmethod
     def _elements(setting) -> list:
@@ -504,7 +500,7 @@ class PreloadLoss(Candidate):
         lower = np.r_[-np.inf, np.zeros(design.shape[1] - 2), -np.inf]
         coef = lsq_linear(design[fit_mask], target[fit_mask], bounds=(lower, np.inf)).x
         rss = float(np.sum((design[fit_mask] @ coef - target[fit_mask]) ** 2))
-        return self._bic(rss, int(fit_mask.sum()), self.dof(coef, setting)), coef, design
+        return scoring.bic(rss, int(fit_mask.sum()), self.dof(coef, setting)), coef, design
 
     def family(self, setting):
         return setting["law"]
@@ -585,10 +581,11 @@ class BallToBall(_Table):
         """The groove wave's length [m] the fitted level shows: a ball's rail position advances
         half the carriage's running distance, so the level repeats over twice the wavelength;
         half the period of the factors' strongest Fourier component (nodes ``spacing`` [m]
-        apart), at least one node spacing."""
-        power = np.abs(np.fft.rfft(factors - factors.mean()))[1:]
-        frequency = np.fft.rfftfreq(factors.size, spacing)[1:]
-        return float(max(0.5 / frequency[int(np.argmax(power))], spacing))
+        apart; the highest line of numerics.spectrum without a window, which keeps the end
+        nodes of a short table: only where it lies matters), at least one node spacing."""
+        frequency, amplitude = spectrum(spacing * np.arange(factors.size), factors,
+                                        window="rectangular")
+        return float(max(0.5 / frequency[1 + int(np.argmax(amplitude[1:]))], spacing))
 
     def interpret(self, ctx, fit) -> dict:
         """The ball-to-ball friction the fit shows (the mean rise of the level over its lowest

@@ -22,11 +22,11 @@
    the acceleration alone is the input's error times the mass); else ``none``: a small gap
    that neither physics nor a law accounts for is taken as what the data cannot resolve
    (coloured noise, errors of the measured inputs such as accelerations differenced from
-   encoder counts), which the synthetic null runs show. Significance and the share explained
-   are judged against the white floor, a lower bound of the noise, so that coloured noise
-   never hides a structured gap a candidate explains; it includes, in quadrature, the noise a
-   derived acceleration carries into the model's m a (known from its filter:
-   signals.Derivation.output_noise).
+   encoder counts: the true model fed such inputs misses by that much too). Significance and
+   the share explained are judged against the white floor, a lower bound of the noise, so that
+   coloured noise never hides a structured gap a candidate explains; it includes, in
+   quadrature, the noise a derived acceleration carries into the model's m a (known from its
+   filter: signals.Derivation.output_noise).
    The reported noise floor is the larger of the white floor and the
    incoherent noise left by the reported model (the named one, the baseline with its law for
    ``unknown``, else the baseline).
@@ -48,6 +48,7 @@ from . import locate, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          PreslidingHysteresis, candidates_for)
 from .run_io import MeasuredRun, load_run
+from .scoring import bic
 from .signals import derive_motion, noise_rms, sampling_step
 
 SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
@@ -56,17 +57,16 @@ EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate
 ONE_WAY = 0.02  # least share of the moving samples each direction of motion must have
 LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
 #: a significant gap no candidate or law explains is ``unknown`` above this many times the whole
-#: noise, else ``none``: below it, it is what errors of the measured inputs alone produce (the
-#: true model fed the recorded motion of synthetic null runs misses by up to about 1.4 white
-#: noise floors)
+#: noise, else ``none``: the errors of the measured inputs (a differenced, quantised motion) alone
+#: leave the true model a gap of the noise's order, which the bound must clear with a margin
 UNRESOLVED = 2.0
 #: the acceleration derived from the position may carry this share of the force channel's noise
 #: (over the moving mass): its error enters the model as m a, and 0.3 adds 4 % to the noise in
 #: quadrature while the shortest such window keeps the filter's bias on short ramps small
 INPUT_SHARE = 0.3
 #: |corr(running distance, position)| over the usable samples above which the record passes its
-#: positions once (one long stroke with jogs: 0.9998 and more in the synthetic runs where it
-#: happened; records with a return stroke that were looked at: 0.85-0.92)
+#: positions once: 1 on one monotone stroke, hardly less with short jogs back, while a return
+#: stroke over the same positions runs the distance up as the position falls, well below it
 SAME_PATH = 0.99
 MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 #: samples with a resolved acceleration the input check needs (signals.Motion.unresolved);
@@ -74,22 +74,16 @@ MOTION_CHANNELS = ("feed_position", "feed_velocity", "feed_acceleration")
 MIN_RESOLVED = 60
 MAX_DELAY = 5  # samples: the longest delay of the compared channel behind the motion sought
 #: a delay is taken where it cuts the free model's residual mean square in excess of the noise
-#: below DELAY_GAIN of the unshifted one's (the delay is all there is: a few samples cut it to
-#: 0.0003-0.23 on the second generator's development draws, seeds 50000-50003, above 0.1 only on
-#: velocity-only records, pre-sliding without a delay to 0.27-0.52 on the first's, seeds 1000+,
-#: when the search's model was Coulomb's alone), or the whole mean square by DELAY_SHARE (another
-#: effect stays beside the delay: 0.49 and more where the true shift halves the excess, 0.34 at
-#: most without a delay, on the development draws of seeds 97000-98003 and 1000+)
+#: below DELAY_GAIN of the unshifted one's (the delay is all there is: the shift removes most of
+#: the excess, while a shape the free model lacks, pre-sliding say, leaves a large part of it
+#: whatever the shift), or the whole mean square by DELAY_SHARE (another effect stays beside the
+#: delay: the shift then removes a large share of the whole, more than a shift without a delay
+#: removes by fitting noise and shape)
 DELAY_GAIN = 0.15
 DELAY_SHARE = 0.4
 ODD_KNOTS = 10  # knots of the delay search's free friction curve over the speed (besides 0)
 #: knots of its friction level over the running distance
 LEVEL_KNOTS = 6
-
-
-def _bic(residual, mask, k) -> float:
-    n = int(mask.sum())
-    return n * np.log(max(float(np.mean(residual[mask] ** 2)), 1e-300)) + k * np.log(n)
 
 
 def _confidence(scores: dict, chosen: str) -> float:
@@ -300,8 +294,8 @@ def decide(run_dir) -> Naming:
         return still
     if still is not None:  # a shift the search left open: the better best model decides
         common = moved.usable & still.usable
-        fits = [_bic(naming.best_residual, common, naming.best_parameters + extra)
-                for naming, extra in ((still, 0), (moved, 1))]
+        fits = [bic(float(np.sum(naming.best_residual[common] ** 2)), int(common.sum()),
+                    naming.best_parameters + extra) for naming, extra in ((still, 0), (moved, 1))]
         if fits[0] - fits[1] <= SCORE_MIN:
             return still
     run.channel_delay = shift
@@ -374,7 +368,12 @@ def _name(ctx: Context) -> Naming:
     span = float(np.ptp(y[usable]))
     gap_cv = locate.gap(y, base_cv, usable)
     significant = significant_gap(gap_cv, noise_cv, int(usable.sum()))
-    bic_base = _bic(y - base_cv, usable, baseline.n_parameters)
+    n_usable = int(usable.sum())
+
+    def held_out_bic(prediction, parameters):  # scoring.bic of the out-of-fold residual
+        return bic(float(np.sum((y - prediction)[usable] ** 2)), n_usable, parameters)
+
+    bic_base = held_out_bic(base_cv, baseline.n_parameters)
     ranked, cv_gaps = [], {}
     best_residual, best_parameters, best_score = y - base_cv, baseline.n_parameters, 0.0
     for candidate in candidates_for(run):
@@ -382,7 +381,7 @@ def _name(ctx: Context) -> Naming:
         if any(f is None for f in fitted):
             continue
         prediction = out_of_fold([f.prediction for f in fitted])
-        score = bic_base - _bic(y - prediction, usable, fitted[0].n_parameters)
+        score = bic_base - held_out_bic(prediction, fitted[0].n_parameters)
         ranked.append((score, fitted[0], locate.gap(y, fitted[0].prediction, held)))
         cv_gaps[candidate.effect] = locate.gap(y, prediction, usable)
         if score > best_score:
@@ -399,7 +398,7 @@ def _name(ctx: Context) -> Naming:
                 for b, (f, _) in zip(bases, splits)]
         prediction = out_of_fold([b.prediction + values for b, (_, values, _) in zip(bases, laws)])
         terms = max(n for _, _, n in laws)
-        score = bic_base - _bic(y - prediction, usable, baseline.n_parameters + terms)
+        score = bic_base - held_out_bic(prediction, baseline.n_parameters + terms)
         return laws[0], score, prediction
 
     def unexplained(mask, laws, whole):  # a gap on mask a law explains, or too large for noise
@@ -414,8 +413,8 @@ def _name(ctx: Context) -> Naming:
     effect, winner, equation, values = "none", None, None, None
     chosen, twins = _same_path_choice(ctx, usable, ranked)
     # residuals correlated over tau samples count each sample tau times in the BIC: the richer
-    # model must beat the nested one by SCORE_MIN in independent samples (pink noise made a
-    # free table's shape details worth 35-145 against a preload law's, tau 11-14)
+    # model must beat the nested one by SCORE_MIN in independent samples (a free table fits
+    # the shape of correlated noise, which the BIC of correlated samples overrates tau times)
     chosen = _nested_choice(ranked, chosen, SCORE_MIN * (locate.correlation_time(
         y - ranked[chosen][1].prediction, usable) if ranked else 1.0))
     if significant:

@@ -6,6 +6,7 @@ import numpy as np
 from scipy.signal import lombscargle
 from scipy.spatial import cKDTree
 
+from ..numerics.spectrum import spectrum
 from .signals import noise_rms, rounding_noise, sampling_step
 
 BLOCK = 25  # samples per block (at least); every third block is held out
@@ -134,23 +135,18 @@ def explained(residual, signal, mask) -> float:
     return float(np.sum(counts * (means - r.mean()) ** 2) / total) if total > 0 else 0.0
 
 
-def spectrum(time, residual, mask):
-    """(frequency [Hz], amplitude) of the residual (zero where not ``mask``) on a uniform grid."""
-    step = sampling_step(time)
-    grid = np.arange(time[0], time[-1], step)
-    r = np.interp(grid, time, np.where(mask, residual, 0.0))
-    amplitude = 2.0 * np.abs(np.fft.rfft(r * np.hanning(r.size))) / r.size
-    return np.fft.rfftfreq(r.size, step), amplitude
-
-
 def peak_frequencies(time, residual, mask, count: int = 3) -> list[float]:
     """Up to ``count`` frequencies [Hz] whose residual amplitude stands 8x above the median,
     ignoring the lowest 3 bins (trends), each refined to the maximum of the Lomb-Scargle
     periodogram of the samples on ``mask`` within a bin of the spectrum's peak: a sinusoid
-    fitted at a frequency off by a bin drifts half a cycle over the record."""
-    freq, amp = spectrum(time, residual, mask)
-    if freq.size < 8:
+    fitted at a frequency off by a bin drifts half a cycle over the record. The spectrum is
+    numerics.spectrum of the residual (zero where not ``mask``) resampled at the record's
+    nominal step (signals.sampling_step); only where its peaks lie matters, not its scale."""
+    step = sampling_step(time)
+    grid = np.arange(time[0], time[-1], step)
+    if grid.size < 14:  # fewer than 8 frequencies
         return []
+    freq, amp = spectrum(grid, np.interp(grid, time, np.where(mask, residual, 0.0)))
     floor = np.median(amp[3:])
     found = []
     for i in np.argsort(amp[3:])[::-1][:50] + 3:

@@ -38,6 +38,8 @@ from scipy.interpolate import CubicHermiteSpline, CubicSpline
 from scipy.signal import get_window, istft, savgol_coeffs, savgol_filter, stft
 from scipy.stats import chi2
 
+from ..numerics.spectrum import spectrum
+
 NOISY = 1e-4  # channel noise / range above which a measured channel is smoothed
 STANDSTILL = 0.01  # |v| below this fraction of max |v|: direction of motion ambiguous
 #: ... or, where the position tells rests apart, below this many times the velocity's noise RMS
@@ -324,12 +326,13 @@ def _window(time, velocity_like) -> int:
     """Odd window [samples]: about 1/40 of the median samples between sign changes, 5..51, and
     short enough that the cubic filter's cutoff, about 4 / (3.2 M - 4.6) of the Nyquist frequency
     for 2 M + 1 samples (Schafer 2011), lies 3x above the highest frequency standing 30x above
-    the median of the velocity's spectrum."""
+    the median of the velocity's spectrum (numerics.spectrum without a window, over the sample
+    index as the filter sees the samples; only where it stands above its median matters)."""
     signs = np.sign(velocity_like)
     moving = np.flatnonzero(signs != 0)
     changes = moving[1:][signs[moving[1:]] != signs[moving[:-1]]]
     per_stroke = np.median(np.diff(changes)) if changes.size > 2 else time.size
-    amplitude = np.abs(np.fft.rfft(velocity_like - np.mean(velocity_like)))
+    _, amplitude = spectrum(np.arange(velocity_like.size), velocity_like, window="rectangular")
     strong = np.flatnonzero(amplitude[1:] > 30.0 * np.median(amplitude[1:])) + 1
     if strong.size:
         highest = strong[-1] / (amplitude.size - 1)  # fraction of the Nyquist frequency

@@ -1,10 +1,11 @@
 """The discrepancy workflow for vertical responses (docs/measured-run.md, "For vertical runs").
 
-**The model** is the vertical system of FMUs wired as the paper scenarios: FeedKinematics (the
-measured motion replayed) -> the contact's feed velocity; ForceTable (the measured normal
-force) -> VerticalDynamics.F_ext; VerticalDynamics <-> the contact named in [model] (dry_hertz:
-ContactDryHertz, ehl: ContactEHL, whose film follows eq. 4 with its squeeze term), with the
-contact's tangent and force law handed to the carriage. What the format fixes, mapped to it:
+**The model** is the vertical rig of FMUs (scenarios.vertical_rig), coupled as the paper
+scenarios: FeedKinematics (the measured motion replayed) -> the contact's feed velocity;
+ForceTable (the measured normal force) -> VerticalDynamics.F_ext; VerticalDynamics <-> the
+contact named in [model] (dry_hertz: ContactDryHertz, ehl: ContactEHL, whose film follows eq. 4
+with its squeeze term), with the contact's tangent and force law handed to the carriage. What
+the format fixes, mapped to it:
 
 * the moving mass is VerticalDynamics' mass, gravity along y (along normal_force);
 * rows / 2 rows of elements_per_row rollers above the moving part and as many below, each
@@ -44,8 +45,9 @@ workflow's rules (decide.py: significance, SCORE_MIN, EXPLAINED, UNRESOLVED), wi
 in the feed velocity, the normal force and the residual's peak frequencies for ``unknown``.
 **Realisation** co-simulates the named model (or the baseline) through the FMUs with the
 stabilised coupling at a macro step of at most COSIM_STEP, halved up to REFINEMENTS times until
-its RMS deviation from the decision's model is within REALISED noise floors (a dry record of
-the first generator: 1.8 noise floors of gap after at 4 us, 1.06 at 1 us).
+its RMS deviation from the decision's model is within REALISED noise floors (an undamped
+response near resonance can need a finer step than the paper scenarios' coarsest to follow the
+decision's model to the noise).
 """
 from __future__ import annotations
 
@@ -60,6 +62,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..fmu_build import build
 from ..cosim import master, system as cosim_system
+from ..numerics.spectrum import spectrum, uniform_grid
 from ..physics.roller_guide import four_rows as gw
 from ..physics.roller_guide import contact_model
 from ..physics.roller_guide.carriage import LENGTH_SCALE, STANDARD_GRAVITY
@@ -67,12 +70,13 @@ from ..physics.roller_guide.film import LineContact
 from ..physics.rigs.force_table import ForceTable
 from ..physics.roller_guide.roller_law import EXPONENT, MICRON, palmgren_stiffness
 from ..reference.vertical import FusedVertical
-from ..scenarios import couple_contact
+from ..scenarios import vertical_rig
 from . import locate, regression
-from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _bic, _confidence,
+from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _confidence,
                      significant_gap)
 from .realise import write_replay
 from .run_io import REDUCED_MODULUS, MeasuredRun
+from .scoring import bic
 from .signals import channel_noise, denoise_spectrum, derive_motion
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
@@ -81,7 +85,9 @@ CHANNELS = {"vertical_displacement": ("Carriage.y", "m"),
             "vertical_acceleration": ("Carriage.y_ddot", "m/s2")}
 COSIM_STEP = 4e-6  # s, largest macro step of the realisation (the paper scenarios' coarsest)
 REFINEMENTS = 2  # halvings of the realisation's macro step at most
-REALISED = 0.3  # the realisation's RMS deviation from the decision's model, in noise floors
+#: the realisation's RMS deviation from the decision's model, in noise floors: uncorrelated
+#: with the residual, it adds 4.4 % to a gap at the noise (sqrt(1 + 0.3^2))
+REALISED = 0.3
 INPUT_NOISE_SEED = 0  # of the white noise VerticalRig.input_noise drives the model with
 SIMULATIONS = 6  # most simulations a candidate's fit takes
 START_STEP = 3.0  # load noise RMS of the start's secant in calibrate
@@ -239,15 +245,10 @@ class VerticalRig:
         return float(np.sqrt(k / setting.mass) / (2 * math.pi))
 
     def spectrum(self, values, pad: int = 1) -> tuple[np.ndarray, np.ndarray]:
-        """(f [Hz], amplitude) of ``values`` at the samples, resampled to their median step,
-        Hann-windowed, the transform zero-padded ``pad`` times (a finer grid of frequencies)."""
-        t = self.run.time
-        step = float(np.median(np.diff(t)))
-        grid = t[0] + step * np.arange(int((t[-1] - t[0]) / step) + 1)
-        v = np.interp(grid, t, values)
-        window = np.hanning(v.size)
-        amplitude = np.abs(np.fft.rfft((v - v.mean()) * window, pad * v.size)) * 2 / window.sum()
-        return np.fft.rfftfreq(pad * v.size, step), amplitude
+        """numerics.spectrum (f [Hz], amplitude) of ``values`` at the samples, resampled onto
+        numerics.uniform_grid of their times, the transform zero-padded ``pad`` times."""
+        grid = uniform_grid(self.run.time)
+        return spectrum(grid, np.interp(grid, self.run.time, values), pad=pad)
 
     def measured_natural_frequency(self, y) -> float | None:
         """The record's free-vibration peak [Hz]: the largest of the measured channel's spectrum
@@ -282,19 +283,12 @@ class VerticalRig:
         if step is None:
             interval = float(np.median(np.diff(t)))
             step = interval / max(1, math.ceil(interval / COSIM_STEP))
-        fmus = self.fmu_dir.resolve()
-        contact = CONTACT_FMUS[setting.contact]
         b = cosim_system.Builder(name, f"{self.run.path.name}: {name}").experiment(
             start=float(t[0]), stop=float(t[-1]), step=float(step), algorithm="stabilised")
-        b.component("Feed", fmus / "FeedKinematics.fmu", profile="replay",
-                    table_file=str(self.replay.resolve()))
-        b.component("Load", fmus / "ForceTable.fmu", table_file=str(self.load.resolve()),
-                    column="normal_force")
-        b.component("Carriage", fmus / "VerticalDynamics.fmu", mass=setting.mass,
-                    y_start=self.start(setting))
-        b.component("Contact", fmus / f"{contact}.fmu", **self.contact_parameters(setting))
-        b.connect("Feed.u", "Contact.u").connect("Load.F", "Carriage.F_ext")
-        couple_contact(b, lubricated=setting.contact == "ehl")
+        vertical_rig(b, self.fmu_dir.resolve(), CONTACT_FMUS[setting.contact],
+                     self.replay.resolve(), self.load.resolve(),
+                     {"mass": setting.mass, "y_start": self.start(setting)},
+                     self.contact_parameters(setting))
         b.record([self.column, "Carriage.y", "Contact.F_upper", "Contact.h_upper", "Feed.u"])
         b.plots(time=[self.column, "Contact.F_upper"], spectrum=[self.column])
         return b.system()
@@ -519,16 +513,20 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     baseline = fit_baseline(rig, y, fit_mask)
     residual = y - baseline.prediction
     gap_base = locate.gap(y, baseline.prediction, held)
-    bic_base = _bic(residual, held, baseline.n_parameters)
+    n_held = int(held.sum())
+
+    def held_out_bic(r, parameters):  # scoring.bic of the residual r on the held-out samples
+        return bic(float(np.sum(r[held] ** 2)), n_held, parameters)
+
+    bic_base = held_out_bic(residual, baseline.n_parameters)
     ranked = []
     for candidate in candidates(rig.base):
         fitted = fit_candidate(rig, candidate, y, fit_mask)
-        score = bic_base - _bic(y - fitted.prediction, held, fitted.n_parameters)
+        score = bic_base - held_out_bic(y - fitted.prediction, fitted.n_parameters)
         ranked.append((score, fitted, locate.gap(y, fitted.prediction, held)))
     ranked.sort(key=lambda item: -item[0])
     # the noise from the best model's residual: a baseline that misses a vibration near the
-    # sampling rate leaves second differences far above the noise (up to 10 times on the first
-    # generator's preload and mass records)
+    # sampling rate leaves second differences far above the noise (the vibration's own)
     noise = min(locate.noise_floor(y, y - model.prediction, held)
                 for model in [baseline] + [fitted for _, fitted, _ in ranked[:1]])
     # with the response to what noise of the load cell the denoised column still holds
@@ -548,7 +546,7 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
             terms = law_terms(rig, frequencies)
             coefficients = regression.stlsq(terms, residual, fit_mask)
             law = sum((c * terms[t] for t, c in coefficients.items()), np.zeros_like(y))
-            law_score = bic_base - _bic(residual - law, held, 1 + len(coefficients))
+            law_score = bic_base - held_out_bic(residual - law, 1 + len(coefficients))
             explains = law_score > SCORE_MIN and share(
                 locate.gap(y, baseline.prediction + law, held)) >= LAW_EXPLAINED
             if explains or gap_base > UNRESOLVED * noise:

@@ -1,8 +1,8 @@
 """The vertical rig's equations fused into one right-hand side, for fits that simulate it often.
 
-The system is that of the vertical diagnosis (``diagnose/vertical.py``): a feed replay and a
-force table drive a VerticalDynamics carriage coupled to a roller contact (dry or with its two
-film states), y and y_dot to the contact and its force back. Its models are the monolithic
+The system is the vertical rig of ``scenarios.vertical_rig`` (the vertical diagnosis's model): a
+feed replay and a force table drive a VerticalDynamics carriage coupled to a roller contact (dry
+or with its two film states), y and y_dot to the contact and its force back. Its models are the monolithic
 reference's own (``monolithic._Block``: each component's continuous-time model from its FMU's
 start values and the scenario's parameters), so the equations are those of ``physics/``; only
 the assembly is fused. The right-hand side calls them on plain floats
@@ -22,12 +22,13 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import ode
 
+from ..scenarios import vertical_rig_wiring
 from .monolithic import _Block
 
-#: the wiring the fused model stands for: (target, input) -> (source, output)
-WIRING = {("Contact", "y"): ("Carriage", "y"), ("Contact", "y_dot"): ("Carriage", "y_dot"),
-          ("Contact", "u"): ("Feed", "u"), ("Carriage", "F_contact"): ("Contact", "F_contact"),
-          ("Carriage", "F_ext"): ("Load", "F")}
+#: the wiring the fused model stands for, scenarios.vertical_rig's: (target, input) -> (source,
+#: output)
+WIRING = {tuple(target.split(".")): tuple(source.split("."))
+          for source, target in vertical_rig_wiring()}
 DRIVES = ("Feed", "Load")  # the components that replay the record's tables
 COLUMNS = ("Carriage.y", "Carriage.y_ddot")
 FILM_MODELS = ("dry", "extrapolated")  # the contact's force is RowKernel.contact's for these

@@ -248,7 +248,7 @@ def test_wear_volume_per_sliding_length_is_eqs_51_to_53_by_hand():
     # eq. 52 over eq. 51 with the numbers written out for D = 2.6, a slip area of 100 patches
     s = surface(2.6)
     pressure = 1.2e9
-    a_l, a_c, g, d = s.largest_area(pressure), s.critical_area, 2.38e-8, 2.6
+    a_l, a_c, g = s.largest_area(pressure), s.critical_area, 2.38e-8
     slip = 100 * 64e-12
     volume = (100 * (math.pi - 2) * 2 ** 0.4 * g ** 0.6 * a_l ** 0.8 * a_c ** 0.4 * 1.6
               / (0.4 * math.pi ** 2.2))
