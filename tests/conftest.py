@@ -1,9 +1,17 @@
 """Shared fixtures of the test suite."""
-import numpy as np
-import pytest
-from pythonfmu.builder import FmuBuilder
+import os
 
-from guideway_fmu.fmu_build import exit_patch
+# One thread per process for the numerical libraries, set before numpy loads them: the tests run
+# on pytest-xdist workers, one per core, and the libraries' own threads would only contend with
+# the other worker's (the fast loop took twice as long with them). Child processes inherit it.
+for _variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from pythonfmu.builder import FmuBuilder  # noqa: E402
+
+from guideway_fmu.fmu_build import exit_patch  # noqa: E402
 
 
 @pytest.fixture(scope="session")
