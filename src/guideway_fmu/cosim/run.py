@@ -6,21 +6,24 @@ import json
 from pathlib import Path
 
 from . import master, plots
+from .folder_lock import folder_lock
 from .system import PLOT_KINDS, System
 
 
 def run(system: System, out: Path, progress: bool = True) -> master.Result:
-    """Simulate ``system`` and write everything into ``out``. The results stream to
-    results.csv as they are recorded; on failure, interrupt or step timeout a summary with the
-    cause is written (no plots) before SimulationError propagates or the process ends."""
-    out.mkdir(parents=True, exist_ok=True)
-    try:
-        result = master.simulate(system, progress=progress, results=out / "results.csv",
-                                 before_exit=lambda partial: _write(partial, system, out, plot=False))
-    except master.SimulationError as exc:
-        _write(exc.result, system, out, plot=False)
-        raise
-    _write(result, system, out, plot=True)
+    """Simulate ``system`` and write everything into ``out``, holding its lock (folder_lock.py:
+    FolderInUse if another run writes there). The results stream to results.csv as they are
+    recorded; on failure, interrupt or step timeout a summary with the cause is written (no
+    plots) before SimulationError propagates or the process ends."""
+    with folder_lock(out):
+        try:
+            result = master.simulate(
+                system, progress=progress, results=out / "results.csv",
+                before_exit=lambda partial: _write(partial, system, out, plot=False))
+        except master.SimulationError as exc:
+            _write(exc.result, system, out, plot=False)
+            raise
+        _write(result, system, out, plot=True)
     return result
 
 
