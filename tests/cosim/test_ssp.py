@@ -283,6 +283,28 @@ def test_export_onto_one_of_its_own_inputs_is_refused_and_leaves_it_intact(fmu_d
         assert Path(target).read_bytes() == before
 
 
+@pytest.mark.parametrize("export", ["ssp", "fmu"])
+def test_export_onto_a_hard_link_to_one_of_its_inputs_is_refused_and_leaves_it_intact(
+        fmu_dir, tmp_path, export):
+    # another path to the same file passed the guard, which compared paths, and destroyed it
+    from guideway_fmu.cosim.export_fmu import export_fmu
+
+    for fmu in set(FMUS.values()):
+        shutil.copy(fmu_dir / f"{fmu}.fmu", tmp_path)
+    sys_, _ = make(tmp_path, tmp_path, FMPY)
+    write = ssp.export_ssp if export == "ssp" else export_fmu
+    made = "package" if export == "ssp" else "FMU"
+    for target, what in ((tmp_path / "ContactEHL.fmu", "Contact's FMU"),
+                         (sys_.path, "the scenario file")):
+        link = tmp_path / f"link_to_{Path(target).stem}.{export}"
+        link.hardlink_to(target)
+        before = Path(target).read_bytes()
+        with pytest.raises(ValueError, match=f"cannot write {link}: it is {what}, which the "
+                                             f"{made} is made from"):
+            write(sys_, link)
+        assert Path(target).read_bytes() == before
+
+
 @pytest.mark.parametrize("entry, mode", [("../../outside.txt", 0), ("/outside.txt", 0),
                                          ("resources/link", SYMLINK)])
 def test_export_of_an_fmu_with_an_unsafe_entry_is_refused_naming_both(fmu_dir, tmp_path, entry, mode):

@@ -66,6 +66,7 @@ fmpy (``fmpy.ssp.simulation.simulate_ssp``)
 """
 from __future__ import annotations
 
+import os
 import re
 import tempfile
 import zipfile
@@ -124,17 +125,18 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
 def packed_files(system: System, out: Path, made: str) -> dict[str, Path]:
     """The FMU files of ``system`` by file name, checked for packing them into ``out``, the
     ``made`` (package, FMU) to write: FileNotFoundError naming the file if ``out``'s folder or an
-    FMU does not exist; ValueError if ``out`` is one of the FMUs or the scenario file (writing it
-    would destroy what it packs), two different FMU files share a name, or an FMU has an unsafe
-    archive entry (archive.check_entries)."""
+    FMU does not exist; ValueError if ``out`` is one of the FMUs or the scenario file (the same
+    file by any path: a link, a hard link; writing it would destroy what it packs), two
+    different FMU files share a name, or an FMU has an unsafe archive entry
+    (archive.check_entries)."""
     if not out.parent.is_dir():
         raise FileNotFoundError(f"cannot write {out}: folder {out.parent} does not exist")
-    inputs = {comp.fmu.resolve(): f"{comp.name}'s FMU" for comp in system.components.values()}
+    inputs = [(comp.fmu, f"{comp.name}'s FMU") for comp in system.components.values()]
     if system.path is not None:
-        inputs[Path(system.path).resolve()] = "the scenario file"
-    if out.resolve() in inputs:
-        raise ValueError(f"cannot write {out}: it is {inputs[out.resolve()]}, which the {made} "
-                         "is made from")
+        inputs.append((Path(system.path), "the scenario file"))
+    for path, what in inputs if out.exists() else ():
+        if path.exists() and os.path.samefile(out, path):
+            raise ValueError(f"cannot write {out}: it is {what}, which the {made} is made from")
     sources: dict[str, Path] = {}
     for comp in system.components.values():
         if not comp.fmu.is_file():
