@@ -26,7 +26,7 @@ from .algorithms import ALGORITHMS, Algorithm, order
 from .fmu_instance import ERROR, FATAL, FmuInstance
 from .interrupts import StopRequested, StopRequests
 from .observers import Observer, ProgressBar
-from .recording import Recorder, Recording
+from .recording import Recorder, Recording, RecordingError
 from .system import System
 from .watchdog import StepWatchdog
 
@@ -44,6 +44,7 @@ class Result:
     wall_time: float = 0.0  # s, the stepping loop
     fmi_time: float = 0.0  # s, inside FMI calls during the loop
     error: str | None = None
+    stored: dict | None = None  # what the results file holds (Recorder.stored), if one was written
 
     def summary(self) -> dict:
         return {"scenario": self.system, "algorithm": self.algorithm,
@@ -51,7 +52,7 @@ class Result:
                 "wall_time_s": self.wall_time, "fmi_call_time_s": self.fmi_time,
                 "master_overhead_s": self.wall_time - self.fmi_time,
                 "time_span_s": [float(self.recording.time[0]), float(self.recording.time[-1])]
-                if len(self.recording.time) else [], "error": self.error}
+                if len(self.recording.time) else [], "results": self.stored, "error": self.error}
 
 
 class SimulationError(RuntimeError):
@@ -205,14 +206,16 @@ class Execution:
         self.t, self.h = system.experiment.start, system.experiment.step
 
     def instantiate(self, stops: StopRequests) -> None:
-        """Instantiate every FMU (SimulationError naming the instance and file if one fails)."""
+        """Instantiate every FMU (SimulationError naming the instance and file if one fails, the
+        result's error set)."""
         for name in order(self.system):
             comp = self.system.components[name]
             try:
                 self.instances[name] = FmuInstance(comp.fmu, name)
             except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
-                raise SimulationError(f"{self.system.name}: cannot instantiate {name} from "
-                                      f"{comp.fmu}: {exc}", self.result) from exc
+                self.result.error = (f"{self.system.name}: cannot instantiate {name} from "
+                                     f"{comp.fmu}: {exc}")
+                raise SimulationError(self.result.error, self.result) from exc
             stops.check(None)
 
     def initialise(self, stops: StopRequests, values: dict | None = None) -> None:
@@ -294,13 +297,14 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
                         f"t = {t:.9g} s within the step timeout of {exp.step_timeout:g} s; the "
                         "process ends without terminating or freeing the FMU instances")
         recorder.close()
-        result.recording = recorder.recording()
+        result.recording, result.stored = recorder.recording(), recorder.stored()
         for inst in instances.values():
             inst.remove_files()
         if before_exit is not None:
             before_exit(result)
         print(result.error, file=sys.stderr)
 
+    error = signum = cause = None
     with StopRequests() as stops:  # also while the instances are closed
         try:
             execution.instantiate(stops)
@@ -316,16 +320,22 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
                   if exp.step_timeout < math.inf else nullcontext()):
                 _run(execution, watchers, stops)
         except FMICallException as exc:
-            result.error = failure(system.name, instances, exc)
-            raise SimulationError(result.error, result) from exc
+            error, cause = failure(system.name, instances, exc), exc
         except StopRequested as exc:
-            result.error = f"{system.name}: {exc} {_when(exc)}"
-            raise SimulationError(result.error, result, exc.signal) from None
+            error, signum = f"{system.name}: {exc} {_when(exc)}", exc.signal
+        except (SimulationError, RecordingError) as exc:  # instantiation, writing the results
+            error, cause = (str(exc) if isinstance(exc, SimulationError)
+                            else f"{system.name}: {exc}"), exc
         finally:
             execution.close()
             recorder.close()
-            result.recording = recorder.recording()
-        return result
+            result.recording, result.stored = recorder.recording(), recorder.stored()
+    if recorder.error is not None and str(recorder.error) not in (error or ""):
+        error = "\n".join(filter(None, [error, f"{system.name}: {recorder.error}"]))
+    if error is not None:
+        result.error = error
+        raise SimulationError(error, result, signum) from cause
+    return result
 
 
 def failure(system: str, instances: dict[str, FmuInstance], exc: FMICallException) -> str:
