@@ -6,6 +6,7 @@ import shutil
 import tempfile
 import time
 from collections import deque
+from itertools import groupby
 from ctypes import byref
 from pathlib import Path
 
@@ -82,7 +83,11 @@ class FmuInstance:
             f"[{label}] {message.decode('utf-8', 'replace')}")
 
     def log_text(self) -> str:
-        return "\n".join(self.log) or "(the FMU logged nothing)"
+        """The kept log, a message repeated in a row given once with its count (an FMU may say
+        it at every call that meets the same bad parameter)."""
+        runs = [(line, len(list(same))) for line, same in groupby(self.log)]
+        return "\n".join(line if n == 1 else f"{line} ({n} times)" for line, n in runs) or \
+            "(the FMU logged nothing)"
 
     # -- by name ---------------------------------------------------------------------------
     def variable(self, name: str):
