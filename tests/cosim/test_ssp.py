@@ -327,6 +327,24 @@ def test_a_baked_fmu_that_does_not_start_at_its_start_values_is_refused(fmpy_cas
         ssp.export_ssp(fmpy_case[0], tmp_path / "x.ssp")
 
 
+@pytest.mark.parametrize("options", [[], ["--no-bake"]])
+def test_a_parameter_the_fmu_refuses_is_refused_at_export_with_its_message(fmu_dir, tmp_path,
+                                                                           capsys, options):
+    # exported with exit 0 before: the FMU refuses it only when initialised, which it was not
+    from guideway_fmu import cli
+
+    b = system.Builder("bad").experiment(stop=1e-3, step=1e-5, algorithm="jacobi")
+    path = system.dump(b.component("Contact", "ContactEHL.fmu", preload=-100.0)
+                       .system(check_fmus=False), tmp_path / "bad.toml")
+    out = tmp_path / "bad.ssp"
+    assert cli.main(["export-ssp", str(path), str(out), "--fmus", str(fmu_dir), *options]) == 2
+    printed, message = capsys.readouterr().err.split("guideway-fmu export-ssp: error: ")
+    line = "Contact: Guideway.preload must be > 0, got -100.0"
+    assert printed == f"ContactEHL {line}\n"  # the FMU's own, on stderr for hosts without a log
+    assert message == f"Contact: {fmu_dir / 'ContactEHL.fmu'} refuses the instance's parameters: {line}\n"
+    assert not out.exists()
+
+
 def test_a_unit_two_fmus_define_differently_is_refused_naming_both(fmu_dir, tmp_path):
     """(A unit an FMU uses without defining it is refused when the scenario is loaded: fmpy's
     validation of the modelDescription.)"""

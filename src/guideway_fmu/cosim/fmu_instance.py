@@ -89,6 +89,11 @@ class FmuInstance:
         return "\n".join(line if n == 1 else f"{line} ({n} times)" for line, n in runs) or \
             "(the FMU logged nothing)"
 
+    def errors(self) -> list[str]:
+        """The messages the FMU logged with status error or fatal (among the kept ones)."""
+        return [line.split("] ", 1)[1] for line in self.log
+                if line.startswith(("[error] ", "[fatal] "))]
+
     # -- by name ---------------------------------------------------------------------------
     def variable(self, name: str):
         if name not in self.variables:
