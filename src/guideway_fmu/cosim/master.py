@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import gc
 import math
+import signal
 import sys
 import time
 from contextlib import nullcontext
@@ -23,12 +24,12 @@ import numpy as np
 from fmpy.fmi1 import FMICallException
 
 from .algorithms import ALGORITHMS, Algorithm, order
-from .fmu_instance import ERROR, FATAL, FmuInstance
-from .interrupts import StopRequested, StopRequests
+from .fmu_instance import ERROR, FATAL, FmuInstance, remove_unpacked
+from .interrupts import GRACE_PERIOD, StopRequested, StopRequests
 from .observers import Observer, ProgressBar
 from .recording import Recorder, Recording, RecordingError
 from .system import System
-from .watchdog import StepWatchdog
+from .watchdog import Watchdog
 
 
 @dataclass
@@ -201,6 +202,7 @@ class Execution:
         self.with_outputs = with_outputs
         self.algorithm_class = ALGORITHMS[system.experiment.algorithm]
         self.instances: dict[str, FmuInstance] = {}
+        self.instantiating: tuple[str, float] | None = None  # (instance, perf_counter() [s])
         self.bus: Bus | None = None
         self.algorithm: Algorithm | None = None
         self.t, self.h = system.experiment.start, system.experiment.step
@@ -210,13 +212,39 @@ class Execution:
         result's error set)."""
         for name in order(self.system):
             comp = self.system.components[name]
+            self.instantiating = (name, time.perf_counter())
             try:
                 self.instances[name] = FmuInstance(comp.fmu, name)
             except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
                 self.result.error = (f"{self.system.name}: cannot instantiate {name} from "
                                      f"{comp.fmu}: {exc}")
                 raise SimulationError(self.result.error, self.result) from exc
+            finally:
+                self.instantiating = None
             stops.check(None)
+
+    def busy(self) -> tuple[str, str, float] | None:
+        """(instance, FMI function, perf_counter() at its call [s]) of the FMI call in
+        progress, None between calls (for the watchdog, from another thread)."""
+        pending = self.instantiating
+        if pending is not None:
+            return pending[0], "fmi2Instantiate", pending[1]
+        for name, inst in list(self.instances.items()):
+            call = inst.busy
+            if call is not None:
+                return name, *call
+        return None
+
+    def stuck(self, name: str, function: str) -> str:
+        """'FMU instance ... did not return from ...': the call ``function`` of ``name``, with
+        the step it came in or after."""
+        inst = self.instances.get(name)
+        t = None if inst is None else inst.time
+        where = ("the step at" if function == "fmi2DoStep" else
+                 f"{function} during initialisation" if t is None else
+                 f"{function} after the step at")
+        return (f"FMU instance {name!r} did not return from {where}"
+                + ("" if t is None else f" t = {t:.9g} s"))
 
     def initialise(self, stops: StopRequests, values: dict | None = None) -> None:
         """Initialise every instance with the scenario's parameters, then ``values`` ({instance:
@@ -279,8 +307,9 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     an FMU fails a step that cannot be retried or SIGINT/SIGTERM came (the run stops between
     steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
     when ``progress``). With ``results`` the recording streams to that CSV file as it is taken
-    (recording.py). With the experiment's ``step_timeout``, a doStep that outlasts it ends the
-    process (watchdog.py) after ``before_exit`` got the partial result."""
+    (recording.py). An FMI call that outlasts the experiment's ``step_timeout`` (watchdog.py),
+    or that keeps the run from stopping GRACE_PERIOD after a signal (interrupts.py), ends the
+    process after ``before_exit`` got the partial result."""
     exp = system.experiment
     record = recorded(system)
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
@@ -292,20 +321,30 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
                           with_outputs=exp.tolerance == 0 and system.record_interval <= exp.step)
     instances = execution.instances
 
-    def expired(name: str, t: float) -> None:  # in the watchdog's thread; the process then ends
-        result.error = (f"{system.name}: FMU instance {name!r} did not return from the step at "
-                        f"t = {t:.9g} s within the step timeout of {exp.step_timeout:g} s; the "
-                        "process ends without terminating or freeing the FMU instances")
+    def abandon(why: str) -> None:  # in another thread, stuck in an FMU; the process then ends
+        result.error = (f"{system.name}: {why}; the process ends without terminating or freeing "
+                        "the FMU instances")
         recorder.close()
         result.recording, result.stored = recorder.recording(), recorder.stored()
-        for inst in instances.values():
-            inst.remove_files()
+        remove_unpacked()
         if before_exit is not None:
             before_exit(result)
         print(result.error, file=sys.stderr)
 
+    def expired(name: str, function: str) -> None:
+        abandon(f"{execution.stuck(name, function)} within the step timeout of "
+                f"{exp.step_timeout:g} s")
+
+    def unstopped(signum: int) -> None:
+        call = execution.busy()
+        abandon(f"interrupted by {signal.Signals(signum).name}, and "
+                f"{execution.stuck(*call[:2]) if call else 'the run did not stop'} within the "
+                f"grace period of {GRACE_PERIOD:g} s")
+
     error = signum = cause = None
-    with StopRequests() as stops:  # also while the instances are closed
+    watchdog = (Watchdog(execution.busy, exp.step_timeout, expired)
+                if exp.step_timeout < math.inf else nullcontext())
+    with StopRequests(unstopped) as stops, watchdog:  # also while the instances are closed
         try:
             execution.instantiate(stops)
             execution.initialise(stops)
@@ -316,9 +355,7 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
             except FMICallException as exc:
                 exc.time = exp.start
                 raise
-            with (StepWatchdog(instances, exp.step_timeout, expired)
-                  if exp.step_timeout < math.inf else nullcontext()):
-                _run(execution, watchers, stops)
+            _run(execution, watchers, stops)
         except FMICallException as exc:
             error, cause = failure(system.name, instances, exc), exc
         except StopRequested as exc:
