@@ -68,7 +68,8 @@ class Faulty(Fmi2Slave):
     "nan": the doStep that ends at 5 ms outputs NaN with status OK;
     "slow": every doStep takes 10 ms of wall time;
     "hang": the doStep that starts at 5 ms never returns;
-    "hang_init": exitInitializationMode never returns.
+    "hang_init": exitInitializationMode never returns;
+    "terminate": terminate raises.
     A hang begins with the line "Faulty: hanging" on stderr."""
 
     def __init__(self, **kwargs):
@@ -85,6 +86,10 @@ class Faulty(Fmi2Slave):
 
     def exit_initialization_mode(self):
         self._hang("hang_init")
+
+    def terminate(self):
+        if self.fault == "terminate":
+            raise RuntimeError("the faulty model could not terminate")
 
     def _hang(self, fault):
         if self.fault == fault:

@@ -229,16 +229,22 @@ class FmuInstance:
         self.enter_initialisation(start_time, parameters, stop_time)
         self.exit_initialisation()
 
-    def close(self) -> None:
+    def close(self) -> FMICallException | None:
         """Terminate and free the instance, unload it and delete its extracted files; after
-        fmi2Fatal only the files (FMI allows no call into an instance then)."""
+        fmi2Fatal only the files (FMI allows no call into an instance then). Returns the
+        FMICallException of a terminate that failed (the instance is freed all the same, unless
+        it failed fatally: ``fatal`` is then set), else None."""
+        failed = None
         if not self.fatal:
             try:
                 self.call(self.fmu.terminate)
-            except FMICallException:
-                pass  # an instance that failed may refuse to terminate; free it all the same
-            self.call(self.fmu.freeInstance)
+            except FMICallException as exc:
+                failed = exc
+                self.fatal = exc.status == FATAL
+            if not self.fatal:
+                self.call(self.fmu.freeInstance)
         self.remove_files()
+        return failed
 
     def remove_files(self) -> None:
         """Delete the folder the FMU was unpacked into."""

@@ -294,18 +294,26 @@ class Execution:
         finally:
             self.t, self.h = t, h
 
-    def close(self) -> None:
-        """Terminate and free every instance and delete its extracted files."""
+    def close(self) -> FMICallException | None:
+        """Terminate and free every instance and delete its extracted files; returns the first
+        failed terminate (FmuInstance.close), after which no instance is called if it was
+        fmi2Fatal."""
+        first = None
         for inst in self.instances.values():
-            inst.close()
+            if first is not None and first.status == FATAL:
+                inst.fatal = True
+            failed = inst.close()
+            first = first or failed
+        return first
 
 
 def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = (),
              results: str | Path | None = None,
              before_exit: Callable[[Result], None] | None = None) -> Result:
     """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
-    an FMU fails a step that cannot be retried or SIGINT/SIGTERM came (the run stops between
-    steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
+    an FMI call fails (a step that cannot be retried, instantiation, initialisation, reading an
+    output, terminating), the results cannot be written, or SIGINT/SIGTERM came (the run stops
+    between steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
     when ``progress``). With ``results`` the recording streams to that CSV file as it is taken
     (recording.py). An FMI call that outlasts the experiment's ``step_timeout`` (watchdog.py),
     or that keeps the run from stopping GRACE_PERIOD after a signal (interrupts.py), ends the
@@ -364,9 +372,12 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
             error, cause = (str(exc) if isinstance(exc, SimulationError)
                             else f"{system.name}: {exc}"), exc
         finally:
-            execution.close()
+            unterminated = execution.close()
             recorder.close()
             result.recording, result.stored = recorder.recording(), recorder.stored()
+    if error is None and unterminated is not None:  # a run that went well until fmi2Terminate
+        unterminated.time = execution.t
+        error, cause = failure(system.name, instances, unterminated), unterminated
     if recorder.error is not None and str(recorder.error) not in (error or ""):
         error = "\n".join(filter(None, [error, f"{system.name}: {recorder.error}"]))
     if error is not None:
