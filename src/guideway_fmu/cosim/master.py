@@ -336,7 +336,10 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
         result.recording, result.stored = recorder.recording(), recorder.stored()
         remove_unpacked()
         if before_exit is not None:
-            before_exit(result)
+            try:
+                before_exit(result)
+            except OSError as exc:  # a full disk: the message still goes out
+                result.error += f"\n{exc}"
         print(result.error, file=sys.stderr)
 
     def expired(name: str, function: str) -> None:
@@ -368,9 +371,10 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
             error, cause = failure(system.name, instances, exc), exc
         except StopRequested as exc:
             error, signum = f"{system.name}: {exc} {_when(exc)}", exc.signal
-        except (SimulationError, RecordingError) as exc:  # instantiation, writing the results
-            error, cause = (str(exc) if isinstance(exc, SimulationError)
-                            else f"{system.name}: {exc}"), exc
+        except SimulationError as exc:  # an instance that could not be created
+            error, cause = str(exc), exc.__cause__
+        except RecordingError:
+            pass  # recorder.error, below
         finally:
             unterminated = execution.close()
             recorder.close()
@@ -378,8 +382,9 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
     if error is None and unterminated is not None:  # a run that went well until fmi2Terminate
         unterminated.time = execution.t
         error, cause = failure(system.name, instances, unterminated), unterminated
-    if recorder.error is not None and str(recorder.error) not in (error or ""):
+    if recorder.error is not None:  # rows that could not be written, whatever else failed
         error = "\n".join(filter(None, [error, f"{system.name}: {recorder.error}"]))
+        cause = cause or recorder.error
     if error is not None:
         result.error = error
         raise SimulationError(error, result, signum) from cause

@@ -75,8 +75,8 @@ import tomli_w
 from fmpy import read_model_description
 
 PLOT_KINDS = ("time", "spectrum", "film", "envelope")
-STEP_RESOLUTION = 2**20  # float spacings at the largest time a step spans at least (module doc)
 PLOT_OPTIONS = ("skip", "f_max", "window")  # s, Hz, s: see cosim/plots.py
+STEP_RESOLUTION = 2**20  # float spacings at the largest time a step spans at least (module doc)
 
 
 class ScenarioError(ValueError):
@@ -486,8 +486,8 @@ def check(system: System, src: str) -> System:
         raise fail("experiment", "step_timeout", f"must be > 0 s, got {exp.step_timeout}")
     if not 0 < exp.min_step <= exp.max_step:
         raise fail("experiment", "min_step", f"must be > 0 and <= max_step, got {exp.min_step}")
+    smallest = STEP_RESOLUTION * math.ulp(max(abs(exp.start), abs(exp.stop)))
     for key in ("step", "min_step") if exp.tolerance > 0 else ("step",):
-        smallest = smallest_step(exp)
         if getattr(exp, key) < smallest:
             raise fail("experiment", key, f"{getattr(exp, key)!r} s is too small for the clock "
                        f"up to t = {max(abs(exp.start), abs(exp.stop)):g} s: t + h would not "
@@ -598,11 +598,6 @@ def check(system: System, src: str) -> System:
     object.__setattr__(system, "variables", variables)
     object.__setattr__(system, "feedthrough", feedthrough)
     return system
-
-
-def smallest_step(exp: Experiment) -> float:
-    """The smallest step [s] the clock of ``exp`` resolves (module doc)."""
-    return STEP_RESOLUTION * math.ulp(max(abs(exp.start), abs(exp.stop)))
 
 
 def _instance_name_problem(name: str) -> str | None:
