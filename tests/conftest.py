@@ -55,6 +55,7 @@ def cosine_blend_strokes():
 
 # The probe FMU `Faulty`, shared by the tests of failing, hanging and interrupted runs (cosim/).
 FAULTY = '''
+import sys
 import time
 
 from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
@@ -66,7 +67,10 @@ class Faulty(Fmi2Slave):
     "get": after that doStep, reading x raises;
     "nan": the doStep that ends at 5 ms outputs NaN with status OK;
     "slow": every doStep takes 10 ms of wall time;
-    "hang": the doStep that starts at 5 ms never returns."""
+    "hang": the doStep that starts at 5 ms never returns;
+    "hang_init": exitInitializationMode never returns;
+    "terminate": terminate raises.
+    A hang begins with the line "Faulty: hanging" on stderr."""
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -80,13 +84,26 @@ class Faulty(Fmi2Slave):
             raise RuntimeError("the faulty model's output broke at 5 ms")
         return self.x
 
+    def exit_initialization_mode(self):
+        self._hang("hang_init")
+
+    def terminate(self):
+        if self.fault == "terminate":
+            raise RuntimeError("the faulty model could not terminate")
+
+    def _hang(self, fault):
+        if self.fault == fault:
+            print("Faulty: hanging", file=sys.stderr, flush=True)
+        while self.fault == fault:
+            time.sleep(1.0)
+
     def do_step(self, current_time, step_size):
         end = current_time + step_size
         self.late = current_time >= 0.005 - 1e-12
         if self.fault == "raise" and self.late:
             raise RuntimeError("the faulty model broke at 5 ms")
-        while self.fault == "hang" and self.late:
-            time.sleep(1.0)
+        if self.late:
+            self._hang("hang")
         if self.fault == "slow":
             time.sleep(0.01)
         self.x = float("nan") if self.fault == "nan" and end >= 0.005 - 1e-12 else end

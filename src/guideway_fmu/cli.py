@@ -127,8 +127,9 @@ def _run_arguments(p) -> None:
     p.add_argument("--out", type=Path, required=True, help="output folder")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--step-timeout", type=float, default=None, metavar="SECONDS",
-                   help="end the run (exit status 124) when one FMU step takes longer than this "
-                        "wall time [s]; overrides the scenario's experiment.step_timeout")
+                   help="end the run (exit status 124) when one FMI call (a step, the "
+                        "initialisation, ...) takes longer than this wall time [s]; overrides "
+                        "the scenario's experiment.step_timeout")
 
 
 def _run(args) -> int:

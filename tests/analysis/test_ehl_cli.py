@@ -102,7 +102,15 @@ def _write_run(folder, time, load, u, film, parameters=PARAMETERS, columns=None)
         w = csv.writer(f)
         w.writerow(columns)
         w.writerows(np.column_stack([time, u, load, film]).tolist())
-    (folder / "summary.json").write_text(json.dumps({"parameters": {"Contact": parameters}}))
+    return _write_summary(folder, {"Contact": parameters})
+
+
+def _write_summary(folder, parameters):
+    """summary.json of the run in ``folder``: the contact's parameters, and what its results.csv
+    holds, as a run writes it (cosim/run.py)."""
+    stored = {"rows": len((folder / "results.csv").read_text().splitlines()) - 1,
+              "bytes": (folder / "results.csv").stat().st_size}
+    (folder / "summary.json").write_text(json.dumps({"parameters": parameters, "results": stored}))
     return folder
 
 
@@ -220,10 +228,9 @@ def test_ehl_cycle_bad_input_exits_2_with_a_clear_message(tmp_path, capsys, chan
         t = np.arange(4) * 1e-6
         _write_run(run, t, t + 1, t, t, columns=["time", "Feed.u", "Contact.F_upper", "Carriage.y"])
     elif change == "no_instance":
-        (run / "summary.json").write_text(json.dumps({"parameters": {"Carriage": {}}}))
+        _write_summary(run, {"Carriage": {}})
     elif change == "dry_contact":
-        dry = {k: v for k, v in PARAMETERS.items() if k != "viscosity"}
-        (run / "summary.json").write_text(json.dumps({"parameters": {"Contact": dry}}))
+        _write_summary(run, {"Contact": {k: v for k, v in PARAMETERS.items() if k != "viscosity"}})
     elif change == "outside":
         argv += ["--times", "0.5"]
     else:

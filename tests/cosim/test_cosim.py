@@ -335,6 +335,23 @@ def test_fmu_failure_mid_run_names_instance_time_and_log_and_keeps_the_recording
     assert "Probe" in summary["error"]
 
 
+def test_a_parameter_error_is_printed_once_before_the_masters_message(fmu_dir, tmp_path, capsys):
+    # leaving initialisation, reading the outputs and the step each reported it: three lines
+    # on stderr and three in the log the master's message carries
+    from guideway_fmu import cli
+
+    path = write_file(tmp_path, '[experiment]\nstop = 1e-3\nstep = 1e-5\nalgorithm = "jacobi"\n'
+                      f'[components.Contact]\nfmu = "{fmu_dir}/ContactEHL.fmu"\n'
+                      'parameters = { preload = -100.0 }\n', "bad.toml")
+    assert cli.main(["run", str(path), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    printed, message = err.split("guideway-fmu run: error: ")
+    line = "Contact: Guideway.preload must be > 0, got -100.0"
+    assert printed == f"ContactEHL {line}\n"
+    assert message.startswith("bad: FMU instance 'Contact' failed at t = 0 s: fmi2DoStep failed")
+    assert message.count(line) == 1
+
+
 def test_fmu_instance_refuses_missing_file_and_unknown_variable(fmu_dir, tmp_path):
     with pytest.raises(FileNotFoundError, match="nope.fmu"):
         FmuInstance(tmp_path / "nope.fmu", "x")

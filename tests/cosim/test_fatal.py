@@ -62,6 +62,23 @@ def test_a_getter_failing_mid_run_names_the_instance_and_the_step(faulty, fmu_di
               at="0.006")
 
 
+def test_a_terminate_that_fails_after_a_run_that_went_well_fails_the_run(faulty, fmu_dir,
+                                                                        tmp_path):
+    # the run was reported a success: the failed fmi2Terminate was passed over in silence
+    script = textwrap.dedent(CHILD.format(algorithm="jacobi", fmu=faulty, fault="terminate",
+                                          feed=fmu_dir / "FeedKinematics.fmu"))
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         timeout=120, env={**os.environ, "TMPDIR": str(scratch)})
+    assert run.returncode == 3, (run.returncode, run.stderr[-2000:])
+    assert ("fatal: FMU instance 'R' failed at t = 0.01 s: fmi2Terminate failed with status 4 "
+            "(fatal)") in run.stderr
+    assert "the faulty model could not terminate" in run.stderr
+    assert "ROWS 11" in run.stdout  # t = 0 ... 10 ms: every row
+    assert list(scratch.iterdir()) == []
+
+
 def test_an_fmu_that_cannot_be_instantiated_leaves_no_extracted_folder(fmu_dir, tmp_path,
                                                                        monkeypatch):
     import tempfile

@@ -1,8 +1,9 @@
 """A run stopped from outside (SIGINT, SIGTERM) or by its step timeout, in child processes
 running ``guideway-fmu run``: the rows computed so far are in results.csv, summary.json and
 stderr name the cause and the time, the exit status tells which (130, 143, 124), and no folder
-an FMU was unpacked into is left in the child's TMPDIR. The probe FMU `Faulty` is in
-tests/conftest.py."""
+an FMU was unpacked into is left in the child's TMPDIR. The step timeout covers every FMI call
+(it watched doStep only: a hang in initialisation ran for ever), and one SIGTERM ends a run
+whose FMU never returns (it was only noted). The probe FMU `Faulty` is in tests/conftest.py."""
 from __future__ import annotations
 
 import json
@@ -18,6 +19,7 @@ import numpy as np
 import pytest
 
 import guideway_fmu
+from guideway_fmu.cosim.interrupts import GRACE_PERIOD
 
 SCENARIO = """\
 name = "probe"
@@ -108,3 +110,41 @@ def test_a_step_that_outlasts_the_step_timeout_ends_the_run_naming_instance_time
                "step timeout of 0.5 s")
     assert message in err and summary["error"].startswith(message)
     assert np.allclose(rows_on_disk(tmp_path), np.arange(6) * 0.001)  # t = 0 ... 5 ms
+
+
+def hanging(child) -> None:
+    """Wait until the probe in ``child`` says it hangs."""
+    for line in child.stderr:
+        if line == "Faulty: hanging\n":
+            return
+    pytest.fail("the probe never hung")
+
+
+@pytest.mark.slow  # child processes
+def test_an_fmu_that_hangs_in_initialisation_meets_the_step_timeout(start, tmp_path):
+    child = start("hang_init", stop=0.01, step=0.001, options=("--step-timeout", "0.5"))
+    err, summary = ended(tmp_path, child, 124)
+    message = ("probe: FMU instance 'R' did not return from fmi2ExitInitializationMode during "
+               "initialisation within the step timeout of 0.5 s; the process ends without "
+               "terminating or freeing the FMU instances")
+    assert message in err and summary["error"] == message
+    assert len(rows_on_disk(tmp_path)) == 0 and summary["results"]["rows"] == 0
+
+
+@pytest.mark.slow  # child processes, and the grace period
+@pytest.mark.parametrize("fault, where", [
+    ("hang_init", "fmi2ExitInitializationMode during initialisation"),
+    ("hang", "the step at t = 0.005 s")])
+def test_one_sigterm_ends_a_run_whose_fmu_never_returns_after_the_grace_period(
+        start, tmp_path, fault, where):
+    child = start(fault, stop=0.01, step=0.001)
+    hanging(child)
+    child.send_signal(signal.SIGTERM)  # once, as a scheduler does
+    err, summary = ended(tmp_path, child, 143)
+    message = (f"probe: interrupted by SIGTERM, and FMU instance 'R' did not return from {where} "
+               f"within the grace period of {GRACE_PERIOD:g} s; the process ends without "
+               "terminating or freeing the FMU instances")
+    assert message in err and summary["error"] == message
+    kept = 6 if fault == "hang" else 0  # t = 0 ... 5 ms
+    assert np.allclose(rows_on_disk(tmp_path), np.arange(kept) * 0.001)
+    assert summary["results"]["rows"] == kept

@@ -283,6 +283,28 @@ def test_export_onto_one_of_its_own_inputs_is_refused_and_leaves_it_intact(fmu_d
         assert Path(target).read_bytes() == before
 
 
+@pytest.mark.parametrize("export", ["ssp", "fmu"])
+def test_export_onto_a_hard_link_to_one_of_its_inputs_is_refused_and_leaves_it_intact(
+        fmu_dir, tmp_path, export):
+    # another path to the same file passed the guard, which compared paths, and destroyed it
+    from guideway_fmu.cosim.export_fmu import export_fmu
+
+    for fmu in set(FMUS.values()):
+        shutil.copy(fmu_dir / f"{fmu}.fmu", tmp_path)
+    sys_, _ = make(tmp_path, tmp_path, FMPY)
+    write = ssp.export_ssp if export == "ssp" else export_fmu
+    made = "package" if export == "ssp" else "FMU"
+    for target, what in ((tmp_path / "ContactEHL.fmu", "Contact's FMU"),
+                         (sys_.path, "the scenario file")):
+        link = tmp_path / f"link_to_{Path(target).stem}.{export}"
+        link.hardlink_to(target)
+        before = Path(target).read_bytes()
+        with pytest.raises(ValueError, match=f"cannot write {link}: it is {what}, which the "
+                                             f"{made} is made from"):
+            write(sys_, link)
+        assert Path(target).read_bytes() == before
+
+
 @pytest.mark.parametrize("entry, mode", [("../../outside.txt", 0), ("/outside.txt", 0),
                                          ("resources/link", SYMLINK)])
 def test_export_of_an_fmu_with_an_unsafe_entry_is_refused_naming_both(fmu_dir, tmp_path, entry, mode):
@@ -303,6 +325,24 @@ def test_a_baked_fmu_that_does_not_start_at_its_start_values_is_refused(fmpy_cas
     with pytest.raises(ValueError, match="Feed: .*FeedKinematics.fmu starts phase1 at 2.0588 whatever "
                                          "the start value in its modelDescription.xml \\(0.0 baked\\)"):
         ssp.export_ssp(fmpy_case[0], tmp_path / "x.ssp")
+
+
+@pytest.mark.parametrize("options", [[], ["--no-bake"]])
+def test_a_parameter_the_fmu_refuses_is_refused_at_export_with_its_message(fmu_dir, tmp_path,
+                                                                           capsys, options):
+    # exported with exit 0 before: the FMU refuses it only when initialised, which it was not
+    from guideway_fmu import cli
+
+    b = system.Builder("bad").experiment(stop=1e-3, step=1e-5, algorithm="jacobi")
+    path = system.dump(b.component("Contact", "ContactEHL.fmu", preload=-100.0)
+                       .system(check_fmus=False), tmp_path / "bad.toml")
+    out = tmp_path / "bad.ssp"
+    assert cli.main(["export-ssp", str(path), str(out), "--fmus", str(fmu_dir), *options]) == 2
+    printed, message = capsys.readouterr().err.split("guideway-fmu export-ssp: error: ")
+    line = "Contact: Guideway.preload must be > 0, got -100.0"
+    assert printed == f"ContactEHL {line}\n"  # the FMU's own, on stderr for hosts without a log
+    assert message == f"Contact: {fmu_dir / 'ContactEHL.fmu'} refuses the instance's parameters: {line}\n"
+    assert not out.exists()
 
 
 def test_a_unit_two_fmus_define_differently_is_refused_naming_both(fmu_dir, tmp_path):

@@ -61,6 +61,7 @@ from pathlib import Path
 import numpy as np
 
 from .ehl_plots import plot_distribution, plot_load_history
+from ..cosim.run import read as read_results
 from ..physics import checks
 from ..physics.papers import soleimanian2020 as paper
 from ..physics.roller_guide.ehl import (EHLConvergenceError, EHLResult, LineContactEHL,
@@ -195,41 +196,32 @@ class RunRecord:
     parameters: dict  # the contact instance's resolved parameters (CONTACT_KEYS at least)
 
 
-def _need(path: Path) -> Path:
-    if not path.is_file():
-        raise FileNotFoundError(f"{path} not found (a run folder holds results.csv and summary.json)")
-    return path
-
-
 def read_run(run_dir: str | Path, instance: str = "Contact", feed: str = "Feed.u") -> RunRecord:
     """Read ``<instance>.F_upper``, ``<instance>.h_upper`` and the ``feed`` velocity column of
-    results.csv and the instance's parameters from summary.json. Raises FileNotFoundError or
-    ValueError naming the file and the missing column or key."""
+    results.csv (checked against summary.json: cosim.run.read) and the instance's parameters
+    from summary.json. Raises FileNotFoundError or ValueError naming the file and the missing
+    column or key."""
     run_dir = Path(run_dir)
-    csv_path, summary_path = _need(run_dir / "results.csv"), _need(run_dir / "summary.json")
-    with csv_path.open(newline="") as f:
-        header = next(csv.reader(f), [])
-        try:
-            data = np.loadtxt(f, delimiter=",", ndmin=2)
-        except ValueError as exc:
-            raise ValueError(f"{csv_path}: not numeric: {exc}") from None
+    csv_path, summary_path = run_dir / "results.csv", run_dir / "summary.json"
+    recording, summary = read_results(run_dir)
+    columns = {"time": recording.time, **recording.columns}
     names = {"time": "time", "load": f"{instance}.F_upper", "film": f"{instance}.h_upper",
              "velocity": feed}
-    missing = [c for c in names.values() if c not in header]
+    missing = [c for c in names.values() if c not in columns]
     if missing:
         raise ValueError(f"{csv_path} has no column {', '.join(missing)} "
-                         f"(columns: {', '.join(header)}); see 'instance' and 'feed'")
-    if data.shape[0] < 2 or data.shape[1] != len(header):
-        raise ValueError(f"{csv_path}: need at least 2 rows of {len(header)} values")
-    cols = {k: data[:, header.index(c)] for k, c in names.items()}
+                         f"(columns: {', '.join(columns)}); see 'instance' and 'feed'")
+    if len(recording.time) < 2:
+        raise ValueError(f"{csv_path}: need at least 2 rows")
+    cols = {k: columns[c] for k, c in names.items()}
     if not all(np.all(np.isfinite(v)) for v in cols.values()):
         raise ValueError(f"{csv_path}: non-finite values in {', '.join(names.values())}")
     if np.any(np.diff(cols["time"]) < 0.0):
         raise ValueError(f"{csv_path}: time is not increasing")
     keep = np.r_[True, np.diff(cols["time"]) > 0.0]  # a repeated time (final sample) once
     try:
-        parameters = json.loads(summary_path.read_text())["parameters"][instance]
-    except (ValueError, KeyError, TypeError):
+        parameters = summary["parameters"][instance]
+    except (KeyError, TypeError):
         raise ValueError(f"{summary_path} has no parameters of instance {instance!r}") from None
     lacking = [k for k in CONTACT_KEYS if k not in parameters]
     if lacking:

@@ -66,6 +66,7 @@ class GuidewaySlave(Fmi2Slave):
         self._model = None
         self._inputs_checked = False  # since the last input or parameter was set
         self._initialising = False
+        self._printed: str | None = None  # the error last printed, until a call succeeds
         self._described = _described_starts(self.resources)
 
     # -- registration -------------------------------------------------------------------
@@ -183,16 +184,22 @@ class GuidewaySlave(Fmi2Slave):
             if not self._inputs_checked:  # once per set of inputs: a step and its outputs share it
                 self.check_inputs()
                 self._inputs_checked = True
-            return action()
+            done = action()
         except Exception as exc:  # noqa: BLE001 - an exception here would be fmi2Fatal
             self._error(str(exc))
             return None
+        self._printed = None
+        return done
 
     def _error(self, message: str) -> None:
-        """Log ``message`` as an error, and print it on stderr: pythonfmu 0.7 drops every message
-        when the host instantiated the FMU with logging off, and the cause must reach the user."""
+        """Log ``message`` as an error (every failing call says why), and print it on stderr:
+        pythonfmu 0.7 drops every message when the host instantiated the FMU with logging off,
+        and the cause must reach the user, once (leaving initialisation, the outputs and the step
+        meet a bad parameter in turn): not again until a call succeeds."""
         self.log(f"{self.instance_name}: {message}", Fmi2Status.error)
-        print(f"{type(self).__name__} {self.instance_name}: {message}", file=sys.stderr)
+        if message != self._printed:
+            self._printed = message
+            print(f"{type(self).__name__} {self.instance_name}: {message}", file=sys.stderr)
 
     def _initialise_guarded(self) -> None:
         self._guarded(lambda: self.initialise() or True)

@@ -6,6 +6,7 @@ import shutil
 import tempfile
 import time
 from collections import deque
+from itertools import groupby
 from ctypes import byref
 from pathlib import Path
 
@@ -31,6 +32,7 @@ WARNING = 1  # fmi2Warning: the call succeeded
 ERROR = 3  # fmi2Error: the instance cannot go on
 FATAL = 4  # fmi2Fatal: every instance of the process is then beyond use
 TEMP_PREFIX = "guideway-fmu-"  # of the temporary folder each instance's FMU is unpacked into
+_UNPACKED: set[str] = set()  # those folders of this process not deleted yet
 
 
 class FmuInstance:
@@ -40,7 +42,9 @@ class FmuInstance:
     the state calls, so that a master can tell its own overhead from the FMUs' cost. ``log``
     holds the last LOG_LINES messages the FMU sent (logging is switched on). An FMICallException
     from any call made through these methods carries ``instance``, this instance's name.
-    ``stepping`` is (t [s], perf_counter() at the call [s]) while fmi2DoStep runs, else None.
+    ``busy`` is (the FMI function, perf_counter() at its call [s]) while a call made through
+    them runs (fmi2Instantiate excepted: the instance does not exist yet), else None;
+    ``time`` [s] is where the last fmi2DoStep started (None before the first).
     """
 
     def __init__(self, path: str | Path, name: str):
@@ -56,9 +60,11 @@ class FmuInstance:
         self.fmi_time = 0.0
         #: set once a call returned fmi2Fatal: FMI then forbids any further call
         self.fatal = False
-        self.stepping: tuple[float, float] | None = None
+        self.busy: tuple[str, float] | None = None
+        self.time: float | None = None
         check_entries(self.path)
         self._unzip = tempfile.mkdtemp(prefix=TEMP_PREFIX)
+        _UNPACKED.add(self._unzip)
         try:
             extract(str(self.path), self._unzip)
             self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=self._unzip,
@@ -82,7 +88,16 @@ class FmuInstance:
             f"[{label}] {message.decode('utf-8', 'replace')}")
 
     def log_text(self) -> str:
-        return "\n".join(self.log) or "(the FMU logged nothing)"
+        """The kept log, a message repeated in a row given once with its count (an FMU may say
+        it at every call that meets the same bad parameter)."""
+        runs = [(line, len(list(same))) for line, same in groupby(self.log)]
+        return "\n".join(line if n == 1 else f"{line} ({n} times)" for line, n in runs) or \
+            "(the FMU logged nothing)"
+
+    def errors(self) -> list[str]:
+        """The messages the FMU logged with status error or fatal (among the kept ones)."""
+        return [line.split("] ", 1)[1] for line in self.log
+                if line.startswith(("[error] ", "[fatal] "))]
 
     # -- by name ---------------------------------------------------------------------------
     def variable(self, name: str):
@@ -110,14 +125,19 @@ class FmuInstance:
 
     # -- calls ---------------------------------------------------------------------------------
     def call(self, function, *args):
-        """``function(*args)``, an FMI call of this instance: timed into ``fmi_time``, and an
-        FMICallException it raises names the instance. Kept lean: the master's inner loop."""
+        """``function(*args)``, an FMI call of this instance through fmpy (whose method names
+        are those of FMI without "fmi2"): timed into ``fmi_time``, and an FMICallException it
+        raises names the instance."""
+        name = function.__name__
         t0 = time.perf_counter()
+        self.busy = (name if name.startswith("fmi2") else f"fmi2{name[0].upper()}{name[1:]}", t0)
         try:
             result = function(*args)
         except FMICallException as exc:
             exc.instance = self.name
             raise
+        finally:
+            self.busy = None
         self.fmi_time += time.perf_counter() - t0
         return result
 
@@ -132,7 +152,9 @@ class FmuInstance:
 
         def call(*args):
             t0 = clock()
+            self.busy = (function, t0)
             status = c_function(*args)
+            self.busy = None
             self.fmi_time += clock() - t0
             if status > WARNING:
                 exc = FMICallException(function=function, status=status)
@@ -174,11 +196,8 @@ class FmuInstance:
 
     def do_step(self, t: float, h: float) -> None:
         """fmi2DoStep from t [s] over h [s]; raises FMICallException on discard, error or fatal."""
-        self.stepping = (t, time.perf_counter())
-        try:
-            self._do_step(self.fmu.component, t, h, 0)
-        finally:
-            self.stepping = None
+        self.time = t
+        self._do_step(self.fmu.component, t, h, 0)
 
     def get_state(self):
         """Save the FMU state; free it with :meth:`free_state`."""
@@ -210,18 +229,33 @@ class FmuInstance:
         self.enter_initialisation(start_time, parameters, stop_time)
         self.exit_initialisation()
 
-    def close(self) -> None:
+    def close(self) -> FMICallException | None:
         """Terminate and free the instance, unload it and delete its extracted files; after
-        fmi2Fatal only the files (FMI allows no call into an instance then)."""
+        fmi2Fatal only the files (FMI allows no call into an instance then). Returns the
+        FMICallException of a terminate that failed (the instance is freed all the same, unless
+        it failed fatally: ``fatal`` is then set), else None."""
+        failed = None
         if not self.fatal:
             try:
-                self.fmu.terminate()
-            except FMICallException:
-                pass  # an instance that failed may refuse to terminate; free it all the same
-            self.fmu.freeInstance()
+                self.call(self.fmu.terminate)
+            except FMICallException as exc:
+                failed = exc
+                self.fatal = exc.status == FATAL
+            if not self.fatal:
+                self.call(self.fmu.freeInstance)
         self.remove_files()
+        return failed
 
     def remove_files(self) -> None:
-        """Delete the folder the FMU was unpacked into (the only step allowed for an instance
-        that is stuck in a call: a loaded library stays mapped while its file is gone)."""
+        """Delete the folder the FMU was unpacked into."""
         shutil.rmtree(self._unzip, ignore_errors=True)
+        _UNPACKED.discard(self._unzip)
+
+
+def remove_unpacked() -> None:
+    """Delete every folder an instance of this process unpacked its FMU into and has not
+    deleted: the only step allowed when the process ends around instances stuck in calls (a
+    loaded library stays mapped while its file is gone)."""
+    for folder in list(_UNPACKED):
+        shutil.rmtree(folder, ignore_errors=True)
+        _UNPACKED.discard(folder)

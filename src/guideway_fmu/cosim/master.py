@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import gc
 import math
+import signal
 import sys
 import time
 from contextlib import nullcontext
@@ -23,12 +24,12 @@ import numpy as np
 from fmpy.fmi1 import FMICallException
 
 from .algorithms import ALGORITHMS, Algorithm, order
-from .fmu_instance import ERROR, FATAL, FmuInstance
-from .interrupts import StopRequested, StopRequests
+from .fmu_instance import ERROR, FATAL, FmuInstance, remove_unpacked
+from .interrupts import GRACE_PERIOD, StopRequested, StopRequests
 from .observers import Observer, ProgressBar
-from .recording import Recorder, Recording
+from .recording import Recorder, Recording, RecordingError
 from .system import System
-from .watchdog import StepWatchdog
+from .watchdog import Watchdog
 
 
 @dataclass
@@ -44,6 +45,7 @@ class Result:
     wall_time: float = 0.0  # s, the stepping loop
     fmi_time: float = 0.0  # s, inside FMI calls during the loop
     error: str | None = None
+    stored: dict | None = None  # what the results file holds (Recorder.stored), if one was written
 
     def summary(self) -> dict:
         return {"scenario": self.system, "algorithm": self.algorithm,
@@ -51,7 +53,7 @@ class Result:
                 "wall_time_s": self.wall_time, "fmi_call_time_s": self.fmi_time,
                 "master_overhead_s": self.wall_time - self.fmi_time,
                 "time_span_s": [float(self.recording.time[0]), float(self.recording.time[-1])]
-                if len(self.recording.time) else [], "error": self.error}
+                if len(self.recording.time) else [], "results": self.stored, "error": self.error}
 
 
 class SimulationError(RuntimeError):
@@ -200,20 +202,49 @@ class Execution:
         self.with_outputs = with_outputs
         self.algorithm_class = ALGORITHMS[system.experiment.algorithm]
         self.instances: dict[str, FmuInstance] = {}
+        self.instantiating: tuple[str, float] | None = None  # (instance, perf_counter() [s])
         self.bus: Bus | None = None
         self.algorithm: Algorithm | None = None
         self.t, self.h = system.experiment.start, system.experiment.step
 
     def instantiate(self, stops: StopRequests) -> None:
-        """Instantiate every FMU (SimulationError naming the instance and file if one fails)."""
+        """Instantiate every FMU (SimulationError naming the instance and file if one fails, the
+        result's error set)."""
         for name in order(self.system):
             comp = self.system.components[name]
+            self.instantiating = (name, time.perf_counter())
             try:
                 self.instances[name] = FmuInstance(comp.fmu, name)
             except Exception as exc:  # noqa: BLE001 - fmpy raises a bare Exception here
-                raise SimulationError(f"{self.system.name}: cannot instantiate {name} from "
-                                      f"{comp.fmu}: {exc}", self.result) from exc
+                self.result.error = (f"{self.system.name}: cannot instantiate {name} from "
+                                     f"{comp.fmu}: {exc}")
+                raise SimulationError(self.result.error, self.result) from exc
+            finally:
+                self.instantiating = None
             stops.check(None)
+
+    def busy(self) -> tuple[str, str, float] | None:
+        """(instance, FMI function, perf_counter() at its call [s]) of the FMI call in
+        progress, None between calls (for the watchdog, from another thread)."""
+        pending = self.instantiating
+        if pending is not None:
+            return pending[0], "fmi2Instantiate", pending[1]
+        for name, inst in list(self.instances.items()):
+            call = inst.busy
+            if call is not None:
+                return name, *call
+        return None
+
+    def stuck(self, name: str, function: str) -> str:
+        """'FMU instance ... did not return from ...': the call ``function`` of ``name``, with
+        the step it came in or after."""
+        inst = self.instances.get(name)
+        t = None if inst is None else inst.time
+        where = ("the step at" if function == "fmi2DoStep" else
+                 f"{function} during initialisation" if t is None else
+                 f"{function} after the step at")
+        return (f"FMU instance {name!r} did not return from {where}"
+                + ("" if t is None else f" t = {t:.9g} s"))
 
     def initialise(self, stops: StopRequests, values: dict | None = None) -> None:
         """Initialise every instance with the scenario's parameters, then ``values`` ({instance:
@@ -263,21 +294,30 @@ class Execution:
         finally:
             self.t, self.h = t, h
 
-    def close(self) -> None:
-        """Terminate and free every instance and delete its extracted files."""
+    def close(self) -> FMICallException | None:
+        """Terminate and free every instance and delete its extracted files; returns the first
+        failed terminate (FmuInstance.close), after which no instance is called if it was
+        fmi2Fatal."""
+        first = None
         for inst in self.instances.values():
-            inst.close()
+            if first is not None and first.status == FATAL:
+                inst.fatal = True
+            failed = inst.close()
+            first = first or failed
+        return first
 
 
 def simulate(system: System, progress: bool = False, observers: tuple[Observer, ...] = (),
              results: str | Path | None = None,
              before_exit: Callable[[Result], None] | None = None) -> Result:
     """Run ``system`` from start to stop; raises SimulationError (with the partial result) when
-    an FMU fails a step that cannot be retried or SIGINT/SIGTERM came (the run stops between
-    steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
+    an FMI call fails (a step that cannot be retried, instantiation, initialisation, reading an
+    output, terminating), the results cannot be written, or SIGINT/SIGTERM came (the run stops
+    between steps, interrupts.py). ``observers`` are notified besides the recorder (and the progress bar
     when ``progress``). With ``results`` the recording streams to that CSV file as it is taken
-    (recording.py). With the experiment's ``step_timeout``, a doStep that outlasts it ends the
-    process (watchdog.py) after ``before_exit`` got the partial result."""
+    (recording.py). An FMI call that outlasts the experiment's ``step_timeout`` (watchdog.py),
+    or that keeps the run from stopping GRACE_PERIOD after a signal (interrupts.py), ends the
+    process after ``before_exit`` got the partial result."""
     exp = system.experiment
     record = recorded(system)
     recorder = Recorder(record, {r: system.unit(*r.split(".", 1)) for r in record},
@@ -289,19 +329,33 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
                           with_outputs=exp.tolerance == 0 and system.record_interval <= exp.step)
     instances = execution.instances
 
-    def expired(name: str, t: float) -> None:  # in the watchdog's thread; the process then ends
-        result.error = (f"{system.name}: FMU instance {name!r} did not return from the step at "
-                        f"t = {t:.9g} s within the step timeout of {exp.step_timeout:g} s; the "
-                        "process ends without terminating or freeing the FMU instances")
+    def abandon(why: str) -> None:  # in another thread, stuck in an FMU; the process then ends
+        result.error = (f"{system.name}: {why}; the process ends without terminating or freeing "
+                        "the FMU instances")
         recorder.close()
-        result.recording = recorder.recording()
-        for inst in instances.values():
-            inst.remove_files()
+        result.recording, result.stored = recorder.recording(), recorder.stored()
+        remove_unpacked()
         if before_exit is not None:
-            before_exit(result)
+            try:
+                before_exit(result)
+            except OSError as exc:  # a full disk: the message still goes out
+                result.error += f"\n{exc}"
         print(result.error, file=sys.stderr)
 
-    with StopRequests() as stops:  # also while the instances are closed
+    def expired(name: str, function: str) -> None:
+        abandon(f"{execution.stuck(name, function)} within the step timeout of "
+                f"{exp.step_timeout:g} s")
+
+    def unstopped(signum: int) -> None:
+        call = execution.busy()
+        abandon(f"interrupted by {signal.Signals(signum).name}, and "
+                f"{execution.stuck(*call[:2]) if call else 'the run did not stop'} within the "
+                f"grace period of {GRACE_PERIOD:g} s")
+
+    error = signum = cause = None
+    watchdog = (Watchdog(execution.busy, exp.step_timeout, expired)
+                if exp.step_timeout < math.inf else nullcontext())
+    with StopRequests(unstopped) as stops, watchdog:  # also while the instances are closed
         try:
             execution.instantiate(stops)
             execution.initialise(stops)
@@ -312,20 +366,29 @@ def simulate(system: System, progress: bool = False, observers: tuple[Observer, 
             except FMICallException as exc:
                 exc.time = exp.start
                 raise
-            with (StepWatchdog(instances, exp.step_timeout, expired)
-                  if exp.step_timeout < math.inf else nullcontext()):
-                _run(execution, watchers, stops)
+            _run(execution, watchers, stops)
         except FMICallException as exc:
-            result.error = failure(system.name, instances, exc)
-            raise SimulationError(result.error, result) from exc
+            error, cause = failure(system.name, instances, exc), exc
         except StopRequested as exc:
-            result.error = f"{system.name}: {exc} {_when(exc)}"
-            raise SimulationError(result.error, result, exc.signal) from None
+            error, signum = f"{system.name}: {exc} {_when(exc)}", exc.signal
+        except SimulationError as exc:  # an instance that could not be created
+            error, cause = str(exc), exc.__cause__
+        except RecordingError:
+            pass  # recorder.error, below
         finally:
-            execution.close()
+            unterminated = execution.close()
             recorder.close()
-            result.recording = recorder.recording()
-        return result
+            result.recording, result.stored = recorder.recording(), recorder.stored()
+    if error is None and unterminated is not None:  # a run that went well until fmi2Terminate
+        unterminated.time = execution.t
+        error, cause = failure(system.name, instances, unterminated), unterminated
+    if recorder.error is not None:  # rows that could not be written, whatever else failed
+        error = "\n".join(filter(None, [error, f"{system.name}: {recorder.error}"]))
+        cause = cause or recorder.error
+    if error is not None:
+        result.error = error
+        raise SimulationError(error, result, signum) from cause
+    return result
 
 
 def failure(system: str, instances: dict[str, FmuInstance], exc: FMICallException) -> str:

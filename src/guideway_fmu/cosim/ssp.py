@@ -24,7 +24,10 @@ with the same values, for the tools that apply them. Our FMUs start from the sta
 modelDescription.xml beside their extracted ``resources/`` (components/base.py); the export
 instantiates every baked copy and refuses one that does not start at its baked values (a
 third-party FMU with built-in start values, or one of ours built before they read them).
-``bake=False`` (``export-ssp --no-bake``) packs the FMU files unchanged.
+``bake=False`` (``export-ssp --no-bake``) packs the FMU files unchanged. Either way, every
+instance with parameters is initialised with them and its outputs read before anything is
+written: a parameter the FMU refuses (an error status, or an error it logs) is refused with the
+FMU's own message.
 
 It describes a fixed-step run with ``experiment.step`` whatever ``experiment.algorithm`` says;
 tangents, step-size control, recording and plots are not exported.
@@ -66,6 +69,7 @@ fmpy (``fmpy.ssp.simulation.simulate_ssp``)
 """
 from __future__ import annotations
 
+import os
 import re
 import tempfile
 import zipfile
@@ -78,7 +82,7 @@ from fmpy import read_model_description
 from fmpy.ssp.ssd import Parameter, ParameterSet
 
 from ..fmi.archive import check_entries, with_start_values, xml_value
-from .fmu_instance import FmuInstance
+from .fmu_instance import FMICallException, FmuInstance
 from .system import System
 
 SSD = "http://ssp-standard.org/SSP1/SystemStructureDescription"
@@ -101,8 +105,8 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
     Raises FileNotFoundError naming the file if ``out``'s folder or an FMU file does not exist,
     ValueError if two different FMU files share a file name, ``out`` is one of the scenario's
     FMUs or its description (writing it would destroy what it packs), an FMU has an unsafe
-    archive entry (archive.check_entries), two FMUs define one unit differently, or a baked
-    FMU does not start at its baked values.
+    archive entry (archive.check_entries), two FMUs define one unit differently, a baked
+    FMU does not start at its baked values, or an FMU refuses its instance's parameters.
     """
     out = Path(out)
     packed_files(system, out, "package")
@@ -111,9 +115,16 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
     with tempfile.TemporaryDirectory(prefix="guideway_fmu_ssp_") as tmp:
         files = {}
         for inst, (entry, values) in entries.items():
+            comp = system.components[inst]
             if entry not in files:
-                comp = system.components[inst]
-                files[entry] = _baked(inst, comp.fmu, Path(tmp) / entry, values) if values else comp.fmu
+                files[entry] = (_baked(inst, comp.fmu, Path(tmp) / entry, values,
+                                       system.experiment) if values else comp.fmu)
+            if comp.parameters and not values:  # unbaked: the runner sets them
+                instance = FmuInstance(comp.fmu, inst)
+                try:
+                    _initialises(instance, inst, comp.fmu, system.experiment, comp.parameters)
+                finally:
+                    instance.close()
         with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
             zf.writestr("SystemStructure.ssd", ssd)
             for entry, path in files.items():
@@ -124,17 +135,18 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
 def packed_files(system: System, out: Path, made: str) -> dict[str, Path]:
     """The FMU files of ``system`` by file name, checked for packing them into ``out``, the
     ``made`` (package, FMU) to write: FileNotFoundError naming the file if ``out``'s folder or an
-    FMU does not exist; ValueError if ``out`` is one of the FMUs or the scenario file (writing it
-    would destroy what it packs), two different FMU files share a name, or an FMU has an unsafe
-    archive entry (archive.check_entries)."""
+    FMU does not exist; ValueError if ``out`` is one of the FMUs or the scenario file (the same
+    file by any path: a link, a hard link; writing it would destroy what it packs), two
+    different FMU files share a name, or an FMU has an unsafe archive entry
+    (archive.check_entries)."""
     if not out.parent.is_dir():
         raise FileNotFoundError(f"cannot write {out}: folder {out.parent} does not exist")
-    inputs = {comp.fmu.resolve(): f"{comp.name}'s FMU" for comp in system.components.values()}
+    inputs = [(comp.fmu, f"{comp.name}'s FMU") for comp in system.components.values()]
     if system.path is not None:
-        inputs[Path(system.path).resolve()] = "the scenario file"
-    if out.resolve() in inputs:
-        raise ValueError(f"cannot write {out}: it is {inputs[out.resolve()]}, which the {made} "
-                         "is made from")
+        inputs.append((Path(system.path), "the scenario file"))
+    for path, what in inputs if out.exists() else ():
+        if path.exists() and os.path.samefile(out, path):
+            raise ValueError(f"cannot write {out}: it is {what}, which the {made} is made from")
     sources: dict[str, Path] = {}
     for comp in system.components.values():
         if not comp.fmu.is_file():
@@ -174,10 +186,10 @@ def _entries(system: System, bake: bool) -> dict[str, tuple[str, dict]]:
     return entries
 
 
-def _baked(inst: str, fmu: Path, out: Path, values: dict) -> Path:
+def _baked(inst: str, fmu: Path, out: Path, values: dict, experiment) -> Path:
     """A copy of ``fmu`` at ``out`` starting at ``values``, checked by instantiating it as
-    ``inst`` and reading them back: an FMU that ignores its modelDescription's start values
-    would otherwise run the package with others, silently."""
+    ``inst`` and reading them back (an FMU that ignores its modelDescription's start values
+    would otherwise run the package with others, silently), then initialising it."""
     with_start_values(fmu, out, values)
     try:
         instance = FmuInstance(out, inst)
@@ -194,9 +206,28 @@ def _baked(inst: str, fmu: Path, out: Path, values: dict) -> Path:
                     "parameters. Rebuild it (guideway-fmu build) if it is one of ours built "
                     "before our FMUs read their start values, or export without baking ('bake' False) and "
                     "give the parameters to the runner")
+        _initialises(instance, inst, fmu, experiment)
     finally:
         instance.close()
     return out
+
+
+def _initialises(instance: FmuInstance, inst: str, fmu: Path, experiment,
+                 parameters: dict | None = None) -> None:
+    """Initialise ``instance`` for ``experiment`` with ``parameters`` set and read its outputs;
+    ValueError with the FMU's messages if it fails or logs an error (ours refuse a bad
+    parameter so: pythonfmu can fail no initialisation call without ending the process)."""
+    try:
+        instance.initialise(experiment.start, parameters, experiment.stop)
+        for name, v in instance.variables.items():
+            if v.causality == "output":
+                instance.get(name)
+    except FMICallException as exc:
+        failed = f"{exc}; {'; '.join(dict.fromkeys(instance.errors())) or 'it logged no error'}"
+    else:
+        failed = "; ".join(dict.fromkeys(instance.errors()))
+    if failed:
+        raise ValueError(f"{inst}: {fmu} refuses the instance's parameters: {failed}")
 
 
 def parameter_set(system: System) -> ParameterSet:

@@ -17,10 +17,13 @@ equal system: the one scenario writer. The format (tables and keys, all SI units
     tolerance = 0.0                 # stabilised only: > 0 turns on step-size control (module doc
     min_step = 1e-8                 #   of stabilised.py); min_step/max_step bound the step [s]
     max_step = 1e-4
-    step_timeout = 60.0             # optional, s of wall time: a doStep of any FMU that takes
+    step_timeout = 60.0             # optional, s of wall time: an FMI call of any FMU (its
+                                    #   instantiation, initialisation, a step, ...) that takes
                                     #   longer ends the run (cosim/watchdog.py); default: no limit
 
-    [components.Contact]            # one table per instance; the key is the instance name
+    [components.Contact]            # one table per instance; the key is the instance name:
+                                    #   not empty, no '.', no control character, no white
+                                    #   space at either end
     fmu = "../../fmus/ContactEHL.fmu"   # relative to this file, or looked up in --fmus
     parameters = { preload = 9200.0 }   # parameters (or inputs' start values) by name
 
@@ -54,6 +57,11 @@ equal system: the one scenario writer. The format (tables and keys, all SI units
     skip = 0.01                     # s of transient left out of the spectra
     window = 1e-3                   # s, envelope window
     f_max = 20000.0                 # Hz, upper end of the spectrum plots
+
+The clock's resolution: ``step`` (and, with ``tolerance`` > 0, ``min_step``) must be at least
+STEP_RESOLUTION (2^20) float spacings at the experiment's largest time, max(|start|, |stop|),
+so that t + h advances with each step's length represented to about 1e-6 of itself; a smaller
+one would make no progress (t + h == t) or steps of arbitrary length.
 """
 from __future__ import annotations
 
@@ -68,6 +76,7 @@ from fmpy import read_model_description
 
 PLOT_KINDS = ("time", "spectrum", "film", "envelope")
 PLOT_OPTIONS = ("skip", "f_max", "window")  # s, Hz, s: see cosim/plots.py
+STEP_RESOLUTION = 2**20  # float spacings at the largest time a step spans at least (module doc)
 
 
 class ScenarioError(ValueError):
@@ -124,7 +133,7 @@ class Experiment:
     tolerance: float = 0.0
     min_step: float = 1e-9
     max_step: float = math.inf
-    step_timeout: float = math.inf  # s of wall time per doStep
+    step_timeout: float = math.inf  # s of wall time per FMI call
 
 
 @dataclass(frozen=True)
@@ -477,8 +486,19 @@ def check(system: System, src: str) -> System:
         raise fail("experiment", "step_timeout", f"must be > 0 s, got {exp.step_timeout}")
     if not 0 < exp.min_step <= exp.max_step:
         raise fail("experiment", "min_step", f"must be > 0 and <= max_step, got {exp.min_step}")
+    smallest = STEP_RESOLUTION * math.ulp(max(abs(exp.start), abs(exp.stop)))
+    for key in ("step", "min_step") if exp.tolerance > 0 else ("step",):
+        if getattr(exp, key) < smallest:
+            raise fail("experiment", key, f"{getattr(exp, key)!r} s is too small for the clock "
+                       f"up to t = {max(abs(exp.start), abs(exp.stop)):g} s: t + h would not "
+                       f"advance with useful resolution; it must be >= {smallest:.3g} s "
+                       f"({STEP_RESOLUTION} float spacings there)")
     if not system.components:
         raise fail("components", "-", "at least one component is needed")
+    for name in system.components:
+        problem = _instance_name_problem(name)
+        if problem:
+            raise fail("components", repr(name)[1:-1], f"an instance name {problem}")
 
     variables, feedthrough = {}, {}
     for name, comp in system.components.items():
@@ -578,6 +598,20 @@ def check(system: System, src: str) -> System:
     object.__setattr__(system, "variables", variables)
     object.__setattr__(system, "feedthrough", feedthrough)
     return system
+
+
+def _instance_name_problem(name: str) -> str | None:
+    """What makes ``name`` unusable as an instance name (in ``<instance>.<variable>``
+    references, results' column names, the SSD's and the packed FMU's variable names), or None."""
+    if not name:
+        return "must not be empty"
+    if "." in name:
+        return "must not contain '.', which ends the instance in '<instance>.<variable>'"
+    if not name.isprintable():
+        return "must not contain a control character"
+    if name != name.strip():
+        return "must not begin or end with white space"
+    return None
 
 
 def _article(word: str) -> str:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import time as clock
 from pathlib import Path
 
+from ..cosim.folder_lock import folder_lock
 from .decide import decide
 from .realise import realise
 from .report import write_report, write_vertical_report
@@ -20,18 +21,19 @@ def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
 
     ``fmu_dir``: where to find (or build) the FMUs, by default ``out_dir``/fmus. Returns the
     content of diagnosis.json. Raises FileNotFoundError or ValueError (one message naming the
-    file and the row, column, section or key) for a run that cannot be used.
+    file and the row, column, section or key) for a run that cannot be used, and FolderInUse
+    (cosim/folder_lock.py) if another diagnosis or run writes into ``out_dir``: it is locked
+    meanwhile.
     """
     started = clock.perf_counter()
     out = Path(out_dir)
     fmus = Path(fmu_dir) if fmu_dir is not None else out / "fmus"
-    run = load_run(run_dir)
-    if run.kind == "vertical_response":
-        out.mkdir(parents=True, exist_ok=True)
-        naming = decide_vertical(run, out / "model", fmus)
-        realised = realise_vertical(naming, out)
-        return write_vertical_report(out, naming, realised, clock.perf_counter() - started)
-    naming = decide(run_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    realised = realise(naming, out, fmus)
-    return write_report(out, naming, realised, clock.perf_counter() - started)
+    with folder_lock(out):
+        run = load_run(run_dir)
+        if run.kind == "vertical_response":
+            naming = decide_vertical(run, out / "model", fmus)
+            realised = realise_vertical(naming, out)
+            return write_vertical_report(out, naming, realised, clock.perf_counter() - started)
+        naming = decide(run_dir)
+        realised = realise(naming, out, fmus)
+        return write_report(out, naming, realised, clock.perf_counter() - started)

@@ -18,6 +18,7 @@ import dask
 from distributed import Client, LocalCluster, as_completed
 from tqdm import tqdm
 
+from ..cosim.folder_lock import folder_lock
 from .point import run_point
 from .sweep_file import Sweep
 from .table import ResultsTable
@@ -58,8 +59,14 @@ def dask_client(workers: int = 2, scheduler: str | None = None):
 def run_sweep(sweep: Sweep, out: Path, client: Client, resume: bool = False,
               progress: bool = True, plot: bool = True) -> Outcome:
     """Run the points of ``sweep`` not yet in ``out``/results.csv (all, without ``resume``) on
-    ``client``'s workers; then write results.json and, with ``plot``, the plots."""
-    out = Path(out)
+    ``client``'s workers; then write results.json and, with ``plot``, the plots. ``out`` is
+    locked meanwhile (cosim/folder_lock.py: FolderInUse if another sweep or run writes there)."""
+    with folder_lock(out):
+        return _run_sweep(sweep, Path(out), client, resume, progress, plot)
+
+
+def _run_sweep(sweep: Sweep, out: Path, client: Client, resume: bool, progress: bool,
+               plot: bool) -> Outcome:
     table = ResultsTable(sweep, out)
     done = table.open(resume)
     todo = deque(i for i, point_id in enumerate(sweep.ids) if point_id not in done)
