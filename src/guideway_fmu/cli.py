@@ -102,8 +102,8 @@ def _host_env(args) -> int:
 def _scenario_arguments(p) -> None:
     p.add_argument("scenario", help="scenario TOML file, or the name of a shipped scenario "
                    "(guideway-fmu scenarios lists them)")
-    _fmus_option(p, "shipped scenarios: default ./fmus, built where missing; others: the "
-                    "scenario's paths")
+    _fmus_option(p, "shipped scenarios: default the FMU cache, built where missing; others: "
+                    "the scenario's paths")
     p.add_argument("--stop", type=float, default=None, help="override the stop time [s]")
     p.add_argument("--step", type=float, default=None, help="override the macro step [s]")
     p.add_argument("--algorithm", default=None,
@@ -211,7 +211,7 @@ def _diagnose_arguments(p) -> None:
     p.add_argument("--out", type=Path, required=True,
                    help="output folder: diagnosis.json, fit.csv, report.html, plots")
     p.add_argument("--fmus", type=Path, default=None,
-                   help="where to find or build the FMUs (default OUT/fmus)")
+                   help="where to find or build the FMUs (default: the FMU cache)")
 
 
 def _diagnose(args) -> int:
@@ -223,7 +223,9 @@ def _diagnose(args) -> int:
 
 def _demo_arguments(p) -> None:
     p.add_argument("--out", type=Path, default=Path("out/demo"))
-    p.add_argument("--fmus", type=Path, default=Path("fmus"))
+    p.add_argument("--fmus", type=Path, default=None,
+                   help="take the FMUs from this folder, built where missing or built from other "
+                        "code (default: the FMU cache)")
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
 
 

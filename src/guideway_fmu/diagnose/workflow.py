@@ -8,6 +8,7 @@ from __future__ import annotations
 import time as clock
 from pathlib import Path
 
+from ..fmu_build import cache
 from .decide import decide
 from .realise import realise
 from .report import write_report, write_vertical_report
@@ -18,14 +19,15 @@ from .vertical import decide_vertical, realise_vertical
 def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
     """Diagnose the measured run in ``run_dir``; write everything into ``out_dir``.
 
-    ``fmu_dir``: where to find (or build) the FMUs, by default ``out_dir``/fmus. Returns the
-    content of diagnosis.json. Raises FileNotFoundError or ValueError (one message naming the
-    file and the row, column, section or key) for a run that cannot be used.
+    ``fmu_dir``: where to find (or build) the FMUs, by default the FMU cache's folder
+    (fmu_build.cache). Returns the content of diagnosis.json. Raises FileNotFoundError or
+    ValueError (one message naming the file and the row, column, section or key) for a run that
+    cannot be used.
     """
     started = clock.perf_counter()
     out = Path(out_dir)
-    fmus = Path(fmu_dir) if fmu_dir is not None else out / "fmus"
     run = load_run(run_dir)
+    fmus = Path(fmu_dir) if fmu_dir is not None else cache.folder()
     if run.kind == "vertical_response":
         out.mkdir(parents=True, exist_ok=True)
         naming = decide_vertical(run, out / "model", fmus)
