@@ -182,11 +182,23 @@ def _scenarios(args) -> int:
     return 0
 
 
+def _examples_arguments(p) -> None:
+    p.add_argument("dir", type=Path, help="folder to copy them into (made if missing; a file "
+                   "already there stops the copy before it starts)")
+
+
+def _examples(args) -> int:
+    from . import examples
+    for path in examples.copy_out(args.dir):
+        print(path)
+    return 0
+
+
 # -- sweeps, diagnosis, the demo -------------------------------------------------------------
 def _sweep_arguments(p) -> None:
     p.add_argument("sweep", type=Path, help="sweep file (docs/sweep.md)")
     p.add_argument("--out", type=Path, required=True, help="output folder")
-    _fmus_option(p, "shipped scenarios: default ./fmus, built where missing")
+    _fmus_option(p, "shipped scenarios: default the FMU cache, built where missing")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=2,
                        help="worker processes of the local Dask cluster (default 2)")
@@ -429,6 +441,9 @@ COMMANDS = (
     Command("host-env", "export lines of the environment a C host (libcosim, commercial tools) "
             "needs to run the FMUs with this Python", _host_env_arguments, _host_env),
     Command("scenarios", "list the shipped scenarios", _nothing, _scenarios),
+    Command("examples", "copy the example inputs (the paper commands' cases, a measured run, "
+            "the shipped scenarios) into a folder and list them", _examples_arguments,
+            _examples),
     Command("run", "co-simulate a scenario: results.csv, summary.json, plots", _run_arguments, _run),
     Command("sweep", "parameter sweep of a scenario on Dask workers: results table and plots "
             "(docs/sweep.md)", _sweep_arguments, _sweep),
