@@ -104,6 +104,7 @@ def demo_run(tmp_path_factory):
 
 
 @pytest.mark.slow
+@pytest.mark.serial  # the demo's sweep starts a Dask cluster of two worker processes
 def test_demo_main_job_end_to_end_from_another_directory(demo_run):
     tmp_path, done = demo_run
     summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
@@ -141,6 +142,7 @@ class _Page(HTMLParser):
 
 
 @pytest.mark.slow
+@pytest.mark.serial  # with the demo run it reads
 def test_demo_page_shows_every_plot_the_demo_wrote_with_its_command(demo_run):
     out = demo_run[0] / "demo"
     page = _Page()
@@ -173,6 +175,7 @@ _IMAGE_CHECK = """<script>window.addEventListener("load", () => {
 
 
 @pytest.mark.slow
+@pytest.mark.serial  # with the demo run it reads
 @pytest.mark.skipif(_browser() is None, reason="no headless browser (chromium) installed; "
                     "test_demo_page_shows_every_plot... checks the image paths with html.parser")
 def test_demo_page_renders_in_a_headless_browser_without_broken_images(demo_run, tmp_path):

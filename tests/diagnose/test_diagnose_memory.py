@@ -8,7 +8,8 @@ import pytest
 from guideway_fmu.diagnose import truth
 from guideway_fmu.diagnose.trials import diagnose_in_child
 
-pytestmark = pytest.mark.slow  # minutes: a million samples decided and co-simulated
+# minutes: a million samples decided and co-simulated; its peak memory is measured (runs alone)
+pytestmark = [pytest.mark.slow, pytest.mark.serial]
 
 BOUND = 2e9  # bytes of peak resident set size at 1e6 rows
 
