@@ -2,8 +2,9 @@
 
 Each subcommand is a :class:`Command` in :data:`COMMANDS`: its name, one line of help, a
 function that adds its arguments to its parser and a function that runs it and returns the
-exit status. The library is imported inside the run functions, so ``--help`` and argument
-errors do not pay for numpy, fmpy or dask.
+exit status. The library is imported inside the run functions, after what can be checked
+without it (a path that does not exist, a scenario's name), so ``--help`` and those errors do
+not pay for numpy, fmpy or dask.
 
 Errors: the library raises named errors (ValueError and its subclasses for bad input,
 OSError for files, RuntimeError for a computation that failed) and quotes the arguments it
@@ -52,6 +53,14 @@ def _ratio(text: str) -> float:
         return float(Fraction(text))
     except (ValueError, ZeroDivisionError):
         raise argparse.ArgumentTypeError(f"expected a number or a fraction like 1/3, got {text!r}")
+
+
+def _existing(path: Path, what: str) -> Path:
+    """``path``, which must exist: checked before the library loads, so a mistyped name is told
+    at once; FileNotFoundError ``PATH: cannot read: no such WHAT`` otherwise."""
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: cannot read: no such {what}")
+    return path
 
 
 def _json_flag(p) -> None:
@@ -114,8 +123,8 @@ def _scenario_arguments(p) -> None:
 def _load(args):
     """The scenario of ``args`` with the experiment's overrides, checked."""
     from . import scenarios
+    path = scenarios.find(args.scenario)  # a wrong name is told before the library loads
     from .cosim import system
-    path = scenarios.find(args.scenario)
     s = system.load(path, scenarios.fmu_folder(path, args.fmus))
     changes = {k: getattr(args, k, None) for k in ("stop", "step", "algorithm", "step_timeout")
                if getattr(args, k, None) is not None}
@@ -132,8 +141,9 @@ def _run_arguments(p) -> None:
 
 
 def _run(args) -> int:
+    scenario = _load(args)
     from .cosim.run import run
-    result = run(_load(args), args.out, progress=not args.no_progress)
+    result = run(scenario, args.out, progress=not args.no_progress)
     _print_json({k: v for k, v in result.summary().items() if k != "parameters"})
     return 0
 
@@ -144,8 +154,9 @@ def _verify_arguments(p) -> None:
 
 
 def _verify(args) -> int:
+    scenario = _load(args)
     from .reference.verify import format_table, verify
-    report = verify(_load(args))
+    report = verify(scenario)
     print(json.dumps(report, indent=2) if args.json else format_table(report))
     return 0
 
@@ -160,8 +171,9 @@ def _export_ssp_arguments(p) -> None:
 
 
 def _export_ssp(args) -> int:
+    scenario = _load(args)
     from .cosim.ssp import export_ssp
-    print(export_ssp(_load(args), args.out, bake=not args.no_bake))
+    print(export_ssp(scenario, args.out, bake=not args.no_bake))
     return 0
 
 
@@ -171,8 +183,9 @@ def _export_fmu_arguments(p) -> None:
 
 
 def _export_fmu(args) -> int:
+    scenario = _load(args)
     from .cosim.export_fmu import export_fmu
-    print(export_fmu(_load(args), args.out))
+    print(export_fmu(scenario, args.out))
     return 0
 
 
@@ -210,8 +223,10 @@ def _sweep_arguments(p) -> None:
 
 
 def _sweep(args) -> int:
-    from .sweep import run, sweep_file
-    spec = sweep_file.load(args.sweep, args.fmus)
+    _existing(args.sweep, "sweep file")
+    from .sweep import sweep_file
+    spec = sweep_file.load(args.sweep, args.fmus)  # a bad file is told before dask loads
+    from .sweep import run
     with run.dask_client(args.workers, args.scheduler) as client:
         outcome = run.run_sweep(spec, args.out, client, args.resume, progress=not args.no_progress)
     _print_json(outcome.__dict__)
@@ -227,6 +242,7 @@ def _diagnose_arguments(p) -> None:
 
 
 def _diagnose(args) -> int:
+    _existing(args.run_dir, "measured-run folder (rig.toml and data.csv)")
     from .diagnose.workflow import diagnose
     diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus)
     _print_json({k: v for k, v in diagnosis.items() if k != "candidates"})
@@ -343,6 +359,7 @@ _EHL_CYCLE_OPTIONS = ("instance", "feed", "times", "count", "window", "history",
 
 
 def _ehl_cycle(args) -> int:
+    _existing(args.run_dir, "run folder")
     from .analysis import ehl as ea
     options = {k: getattr(args, k) for k in _EHL_CYCLE_OPTIONS if getattr(args, k) is not None}
     if "times" in options:
@@ -361,6 +378,7 @@ def _modes_arguments(p) -> None:
 
 
 def _modes(args) -> int:
+    _existing(args.carriage, "carriage file")
     from .analysis import carriage_modes
     result = carriage_modes.analyse(carriage_modes.read_carriage(args.carriage))
     print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result))
@@ -381,9 +399,10 @@ def _feed_unit_arguments(p) -> None:
 
 
 def _feed_unit(args) -> int:
-    from .analysis import feed_unit as fa
     if args.sweep is None and (args.range is not None or args.plot is not None):
         raise ValueError("--range and --plot need --sweep")
+    _existing(args.feed_unit, "feed-unit file")
+    from .analysis import feed_unit as fa
     case = fa.read_feed_unit(args.feed_unit)
     if args.sweep is None:
         result = fa.analyse(case)
@@ -405,6 +424,7 @@ def _ball_to_ball_arguments(p) -> None:
 
 
 def _ball_to_ball(args) -> int:
+    _existing(args.case, "ball-to-ball case file")
     from .analysis import ball_to_ball
     case = ball_to_ball.read_case(args.case)
     result = ball_to_ball.analyse(case, args.case)
@@ -421,6 +441,7 @@ def _wear_arguments(p) -> None:
 
 
 def _wear(args) -> int:
+    _existing(args.case, "wear case file")
     from .analysis import wear
     case = wear.read_case(args.case)
     result = wear.analyse(case, args.distance, args.points)
@@ -527,8 +548,12 @@ def main(argv: list[str] | None = None) -> int:
 
 def entry() -> None:
     """The ``guideway-fmu`` command: :func:`main`, then the process ends without the
-    interpreter's finalisation (cosim.interrupts.exit_without_finalising)."""
+    interpreter's finalisation (cosim.interrupts.exit_without_finalising) once fmpy, through
+    which FMUs load, is loaded; a command that loaded none (an error told early) exits as
+    usual, without loading cosim to do so."""
     status = main()
+    if "fmpy" not in sys.modules:
+        sys.exit(status)
     from .cosim.interrupts import exit_without_finalising
     exit_without_finalising(status)
 
