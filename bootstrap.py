@@ -55,11 +55,13 @@ def workers() -> int:
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 
 
-def test(args: "list[str]") -> int:
+def test(args: "list[str]", python: Path = BIN / "python") -> int:
     """The suite in two passes: every test not marked serial on all cores, then the serial ones
-    (they time, measure memory or start process pools and Dask clusters of their own) alone.
-    The worse status of the two; a pass that selects nothing counts as passed unless both do."""
-    pytest = [BIN / "python", "-m", "pytest"]
+    (they measure memory or start process pools and Dask clusters of their own) alone.
+    The worse status of the two; a pass that selects nothing counts as passed unless both do.
+    ``python``: the interpreter with the package and pytest (benchmarks/workday.py passes its
+    own)."""
+    pytest = [python, "-m", "pytest"]
     statuses = [_run(*pytest, "-m", "not serial", "-n", workers(), *args),
                 _run(*pytest, "-m", "serial", "-n", "0", *args)]
     ran = [status for status in statuses if status != NO_TESTS]
