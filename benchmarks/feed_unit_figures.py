@@ -1,8 +1,8 @@
 """The feed unit's figures beside Zhang, Wang and Le (2019), written to docs/feed-unit-figures.md
 with its plots in docs/figures/.
 
-For the three example files in orchestration/ball_guides/ (a size-25 four-row guide, assumed: the
-paper gives no dimensions): the five errors and the stiffness with and without the contact-angle
+For the three example files in src/guideway_fmu/examples/ball_guides/ (a size-25 four-row
+guide, assumed: the paper gives no dimensions): the five errors and the stiffness with and without the contact-angle
 change, the preload-release load beside its hand value, the crossing of the vertical and lateral
 stiffness against the contact angle, and the sweeps drawn as the paper's Figs. 10-16, 19, 20.
 
@@ -23,7 +23,7 @@ from guideway_fmu.physics.ball_guides import feed_unit as fu
 import pages
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "orchestration" / "ball_guides"
+EXAMPLES = ROOT / "src" / "guideway_fmu" / "examples" / "ball_guides"
 FILES = ("zhang2019_vertical_10kN", "zhang2019_lateral_10kN", "zhang2019_cutting_offset")
 #: data the page is computed from (pages.py)
 INPUTS = tuple(f"{EXAMPLES.relative_to(ROOT).as_posix()}/{name}.toml" for name in FILES)
@@ -105,8 +105,8 @@ def main() -> None:
         "# Feed unit: figures beside Zhang, Wang and Le (2019)", "",
         "The model and the file format are in [feed-unit.md](feed-unit.md).", "",
         "The paper gives no dimensions, preload or ball size of its feed unit. The three example "
-        "files in `orchestration/ball_guides/` assume a size-25 four-row guide: 3/16 in balls at "
-        "conformity 0.52, 45 deg, 12 balls per row 4.8 mm apart, 20 N per ball, sliders at "
+        "files in `src/guideway_fmu/examples/ball_guides/` assume a size-25 four-row guide: "
+        "3/16 in balls at conformity 0.52, 45 deg, 12 balls per row 4.8 mm apart, 20 N per ball, sliders at "
         "x = +-0.1 m and y = +-0.15 m. The numbers below are this unit's, not the paper's.", "",
         "## The five errors and the unit's stiffness", "", *_errors_table(results), "",
         "The unit's stiffness is a force at the table's centre over the centre's displacement "

@@ -21,7 +21,7 @@ from guideway_fmu.physics.wear import raceway_wear
 import pages
 
 ROOT = Path(__file__).resolve().parents[1]
-CASE = ROOT / "orchestration" / "ball_guides" / "zhang_wear_lg20_2kN.toml"
+CASE = ROOT / "src" / "guideway_fmu" / "examples" / "ball_guides" / "zhang_wear_lg20_2kN.toml"
 INPUTS = (CASE.relative_to(ROOT).as_posix(),)  # data the page is computed from (pages.py)
 SENSITIVITY = (("fractal_dimension", (2.2, 2.4, 2.6, 2.8)), ("friction", (0.05, 0.1, 0.2)),
                ("tangential_ratio", (0.05, 0.2, 0.5)), ("wear_coefficient", (5e-5, 5e-4, 5e-3)))

@@ -6,9 +6,9 @@ A slot milled in aluminium on a four-slider ball-guide feed unit: a three-tooth 
 150 mm above the ball rows while the table moves under the standing tool at 0.1 m/s
 (FeedKinematics), so the load point travels 100 mm along the table, from 50 mm ahead of its
 centre to 50 mm behind (FeedUnitErrors, the size-25 guide of
-orchestration/ball_guides/zhang2019_vertical_10kN.toml). The errors pulse at the tooth-passing
-frequency of 600 Hz, and the tool point's errors drift as the load point travels (the
-paper's Figs. 15, 16). Built in code and written by the package's one scenario writer
+src/guideway_fmu/examples/ball_guides/zhang2019_vertical_10kN.toml). The errors pulse at the
+tooth-passing frequency of 600 Hz, and the tool point's errors drift as the load point travels
+(the paper's Figs. 15, 16). Built in code and written by the package's one scenario writer
 (``cosim.system.dump``).
 
     python orchestration/make_zhang2019_scenarios.py   # then: guideway-fmu run zhang2019_feed_unit_milling

@@ -14,15 +14,27 @@ from pythonfmu.builder import FmuBuilder  # noqa: E402
 from guideway_fmu.fmu_build import exit_patch  # noqa: E402
 
 
-@pytest.fixture(scope="session")
-def fmu_dir(tmp_path_factory):
-    """All FMUs, extensions included (and their README.md), built once per test session into a
-    temporary folder."""
-    from guideway_fmu.fmu_build.build import build
+@pytest.fixture(scope="session", autouse=True)
+def fmu_cache(tmp_path_factory):
+    """The FMU cache of this test session (GUIDEWAY_FMU_CACHE, inherited by the commands the
+    tests start), never the user's: one folder shared by the xdist workers of one run (the
+    parent of their temporary folders), so one of them builds each FMU and the other waits."""
+    from guideway_fmu.fmu_build import cache
 
-    out = tmp_path_factory.mktemp("fmus")
-    build(out)
-    return out
+    base = tmp_path_factory.getbasetemp()
+    folder = (base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / "fmu-cache"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv(cache.ENVIRONMENT, str(folder))
+        yield folder
+
+
+@pytest.fixture(scope="session")
+def fmu_dir(fmu_cache):
+    """All FMUs, extensions included (and their README.md): the session cache's folder, built
+    once per test run. Shared: a test that changes an FMU works on a copy."""
+    from guideway_fmu.fmu_build import cache
+
+    return cache.folder()
 
 
 @pytest.fixture(scope="session")

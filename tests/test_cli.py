@@ -1,12 +1,11 @@
 """The command line's table of subcommands and its one error boundary."""
 import dataclasses
-from pathlib import Path
 
 import pytest
 
-from guideway_fmu import cli
+from guideway_fmu import cli, examples
 
-CASE = str(Path(__file__).resolve().parents[1] / "orchestration" / "ball_guides" / "zhang_wear_lg20_2kN.toml")
+CASE = str(examples.FOLDER / "ball_guides" / "zhang_wear_lg20_2kN.toml")
 
 
 def test_every_command_of_the_table_has_help_and_its_own_parser(capsys):

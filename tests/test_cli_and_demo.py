@@ -93,8 +93,8 @@ def test_cli_run_bad_scenario_is_a_clear_error(tmp_path, capsys):
 
 @pytest.fixture(scope="module")
 def demo_run(tmp_path_factory):
-    """The demo run once in a subprocess from another directory (runs of 2 ms, FMUs built into
-    ./fmus there): (the folder it ran in, the finished process)."""
+    """The demo run once in a subprocess from another directory (runs of 2 ms, FMUs from the
+    test session's cache): (the folder it ran in, the finished process)."""
     cwd = tmp_path_factory.mktemp("demo")
     done = subprocess.run([sys.executable, "-m", "guideway_fmu.cli", "demo", "--out", "demo",
                            "--stop", "2e-3"], cwd=cwd, capture_output=True, text=True,
@@ -104,10 +104,11 @@ def demo_run(tmp_path_factory):
 
 
 @pytest.mark.slow
+@pytest.mark.serial  # the demo's sweep starts a Dask cluster of two worker processes
 def test_demo_main_job_end_to_end_from_another_directory(demo_run):
     tmp_path, done = demo_run
     summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
-    assert (tmp_path / "fmus" / "ContactEHL.fmu").is_file()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["demo"]  # no FMUs in the working folder
     assert set(summary["runs"]) == set(job.DEMO_SCENARIOS)
     assert summary["verify"]["soleimanian2020_9000N_4500Hz"]["rms_error_Contact.F_upper"] < 0.01
     assert (tmp_path / "demo" / "soleimanian2020_9000N_4500Hz_dry" / "spectrum.png").exists()
@@ -141,6 +142,7 @@ class _Page(HTMLParser):
 
 
 @pytest.mark.slow
+@pytest.mark.serial  # with the demo run it reads
 def test_demo_page_shows_every_plot_the_demo_wrote_with_its_command(demo_run):
     out = demo_run[0] / "demo"
     page = _Page()
@@ -150,12 +152,12 @@ def test_demo_page_shows_every_plot_the_demo_wrote_with_its_command(demo_run):
     assert sorted(page.images) == written  # each once, relative to the page
     assert all((out / link).is_file() for link in page.links)
     text = "".join(page.text)
-    for command in ("guideway-fmu demo --out demo --fmus fmus --stop 0.002",
-                    "guideway-fmu verify soleimanian2020_9000N_4500Hz --fmus fmus --stop 0.002",
+    for command in ("guideway-fmu demo --out demo --stop 0.002",  # FMUs from the cache
+                    "guideway-fmu verify soleimanian2020_9000N_4500Hz --stop 0.002",
                     "guideway-fmu sweep demo/envelope_vs_frequency.toml",
                     "guideway-fmu diagnose demo/diagnose_example/run"):
         assert command in text
-    assert "presliding_hysteresis" in text
+    assert "presliding_hysteresis" in text and "--fmus" not in text
 
 
 def _browser() -> str | None:
@@ -173,6 +175,7 @@ _IMAGE_CHECK = """<script>window.addEventListener("load", () => {
 
 
 @pytest.mark.slow
+@pytest.mark.serial  # with the demo run it reads
 @pytest.mark.skipif(_browser() is None, reason="no headless browser (chromium) installed; "
                     "test_demo_page_shows_every_plot... checks the image paths with html.parser")
 def test_demo_page_renders_in_a_headless_browser_without_broken_images(demo_run, tmp_path):

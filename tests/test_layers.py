@@ -8,7 +8,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "guideway_fmu"
 LAYERS = {"physics": 0, "numerics": 0, "fmi": 0, "output": 0,
           "components": 1, "fmu_build": 2, "cosim": 3,
           "scenarios": 4, "reference": 4, "analysis": 4,
-          "sweep": 5, "diagnose": 5, "demo": 6, "cli": 7}
+          "sweep": 5, "diagnose": 5, "examples": 5, "demo": 6, "cli": 7}
 
 
 def imported_packages(path: Path, root: Path = PACKAGE) -> set[str]:

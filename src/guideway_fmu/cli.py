@@ -2,8 +2,9 @@
 
 Each subcommand is a :class:`Command` in :data:`COMMANDS`: its name, one line of help, a
 function that adds its arguments to its parser and a function that runs it and returns the
-exit status. The library is imported inside the run functions, so ``--help`` and argument
-errors do not pay for numpy, fmpy or dask.
+exit status. The library is imported inside the run functions, after what can be checked
+without it (a path that does not exist, a scenario's name), so ``--help`` and those errors do
+not pay for numpy, fmpy or dask.
 
 Errors: the library raises named errors (ValueError and its subclasses for bad input,
 OSError for files, RuntimeError for a computation that failed) and quotes the arguments it
@@ -54,6 +55,14 @@ def _ratio(text: str) -> float:
         raise argparse.ArgumentTypeError(f"expected a number or a fraction like 1/3, got {text!r}")
 
 
+def _existing(path: Path, what: str) -> Path:
+    """``path``, which must exist: checked before the library loads, so a mistyped name is told
+    at once; FileNotFoundError ``PATH: cannot read: no such WHAT`` otherwise."""
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: cannot read: no such {what}")
+    return path
+
+
 def _json_flag(p) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
@@ -102,8 +111,8 @@ def _host_env(args) -> int:
 def _scenario_arguments(p) -> None:
     p.add_argument("scenario", help="scenario TOML file, or the name of a shipped scenario "
                    "(guideway-fmu scenarios lists them)")
-    _fmus_option(p, "shipped scenarios: default ./fmus, built where missing; others: the "
-                    "scenario's paths")
+    _fmus_option(p, "shipped scenarios: default the FMU cache, built where missing; others: "
+                    "the scenario's paths")
     p.add_argument("--stop", type=float, default=None, help="override the stop time [s]")
     p.add_argument("--step", type=float, default=None, help="override the macro step [s]")
     p.add_argument("--algorithm", default=None,
@@ -114,8 +123,8 @@ def _scenario_arguments(p) -> None:
 def _load(args):
     """The scenario of ``args`` with the experiment's overrides, checked."""
     from . import scenarios
+    path = scenarios.find(args.scenario)  # a wrong name is told before the library loads
     from .cosim import system
-    path = scenarios.find(args.scenario)
     s = system.load(path, scenarios.fmu_folder(path, args.fmus))
     changes = {k: getattr(args, k, None) for k in ("stop", "step", "algorithm", "step_timeout")
                if getattr(args, k, None) is not None}
@@ -133,8 +142,9 @@ def _run_arguments(p) -> None:
 
 
 def _run(args) -> int:
+    scenario = _load(args)
     from .cosim.run import run
-    result = run(_load(args), args.out, progress=not args.no_progress)
+    result = run(scenario, args.out, progress=not args.no_progress)
     _print_json({k: v for k, v in result.summary().items() if k != "parameters"})
     return 0
 
@@ -145,8 +155,9 @@ def _verify_arguments(p) -> None:
 
 
 def _verify(args) -> int:
+    scenario = _load(args)
     from .reference.verify import format_table, verify
-    report = verify(_load(args))
+    report = verify(scenario)
     print(json.dumps(report, indent=2) if args.json else format_table(report))
     return 0
 
@@ -161,8 +172,9 @@ def _export_ssp_arguments(p) -> None:
 
 
 def _export_ssp(args) -> int:
+    scenario = _load(args)
     from .cosim.ssp import export_ssp
-    print(export_ssp(_load(args), args.out, bake=not args.no_bake))
+    print(export_ssp(scenario, args.out, bake=not args.no_bake))
     return 0
 
 
@@ -172,8 +184,9 @@ def _export_fmu_arguments(p) -> None:
 
 
 def _export_fmu(args) -> int:
+    scenario = _load(args)
     from .cosim.export_fmu import export_fmu
-    print(export_fmu(_load(args), args.out))
+    print(export_fmu(scenario, args.out))
     return 0
 
 
@@ -183,11 +196,23 @@ def _scenarios(args) -> int:
     return 0
 
 
+def _examples_arguments(p) -> None:
+    p.add_argument("dir", type=Path, help="folder to copy them into (made if missing; a file "
+                   "already there stops the copy before it starts)")
+
+
+def _examples(args) -> int:
+    from . import examples
+    for path in examples.copy_out(args.dir):
+        print(path)
+    return 0
+
+
 # -- sweeps, diagnosis, the demo -------------------------------------------------------------
 def _sweep_arguments(p) -> None:
     p.add_argument("sweep", type=Path, help="sweep file (docs/sweep.md)")
     p.add_argument("--out", type=Path, required=True, help="output folder")
-    _fmus_option(p, "shipped scenarios: default ./fmus, built where missing")
+    _fmus_option(p, "shipped scenarios: default the FMU cache, built where missing")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=2,
                        help="worker processes of the local Dask cluster (default 2)")
@@ -199,8 +224,10 @@ def _sweep_arguments(p) -> None:
 
 
 def _sweep(args) -> int:
-    from .sweep import run, sweep_file
-    spec = sweep_file.load(args.sweep, args.fmus)
+    _existing(args.sweep, "sweep file")
+    from .sweep import sweep_file
+    spec = sweep_file.load(args.sweep, args.fmus)  # a bad file is told before dask loads
+    from .sweep import run
     with run.dask_client(args.workers, args.scheduler) as client:
         outcome = run.run_sweep(spec, args.out, client, args.resume, progress=not args.no_progress)
     _print_json(outcome.__dict__)
@@ -212,10 +239,11 @@ def _diagnose_arguments(p) -> None:
     p.add_argument("--out", type=Path, required=True,
                    help="output folder: diagnosis.json, fit.csv, report.html, plots")
     p.add_argument("--fmus", type=Path, default=None,
-                   help="where to find or build the FMUs (default OUT/fmus)")
+                   help="where to find or build the FMUs (default: the FMU cache)")
 
 
 def _diagnose(args) -> int:
+    _existing(args.run_dir, "measured-run folder (rig.toml and data.csv)")
     from .diagnose.workflow import diagnose
     diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus)
     _print_json({k: v for k, v in diagnosis.items() if k != "candidates"})
@@ -224,7 +252,9 @@ def _diagnose(args) -> int:
 
 def _demo_arguments(p) -> None:
     p.add_argument("--out", type=Path, default=Path("out/demo"))
-    p.add_argument("--fmus", type=Path, default=Path("fmus"))
+    p.add_argument("--fmus", type=Path, default=None,
+                   help="take the FMUs from this folder, built where missing or built from other "
+                        "code (default: the FMU cache)")
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
 
 
@@ -330,6 +360,7 @@ _EHL_CYCLE_OPTIONS = ("instance", "feed", "times", "count", "window", "history",
 
 
 def _ehl_cycle(args) -> int:
+    _existing(args.run_dir, "run folder")
     from .analysis import ehl as ea
     options = {k: getattr(args, k) for k in _EHL_CYCLE_OPTIONS if getattr(args, k) is not None}
     if "times" in options:
@@ -348,6 +379,7 @@ def _modes_arguments(p) -> None:
 
 
 def _modes(args) -> int:
+    _existing(args.carriage, "carriage file")
     from .analysis import carriage_modes
     result = carriage_modes.analyse(carriage_modes.read_carriage(args.carriage))
     print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result))
@@ -368,9 +400,10 @@ def _feed_unit_arguments(p) -> None:
 
 
 def _feed_unit(args) -> int:
-    from .analysis import feed_unit as fa
     if args.sweep is None and (args.range is not None or args.plot is not None):
         raise ValueError("--range and --plot need --sweep")
+    _existing(args.feed_unit, "feed-unit file")
+    from .analysis import feed_unit as fa
     case = fa.read_feed_unit(args.feed_unit)
     if args.sweep is None:
         result = fa.analyse(case)
@@ -392,6 +425,7 @@ def _ball_to_ball_arguments(p) -> None:
 
 
 def _ball_to_ball(args) -> int:
+    _existing(args.case, "ball-to-ball case file")
     from .analysis import ball_to_ball
     case = ball_to_ball.read_case(args.case)
     result = ball_to_ball.analyse(case, args.case)
@@ -408,6 +442,7 @@ def _wear_arguments(p) -> None:
 
 
 def _wear(args) -> int:
+    _existing(args.case, "wear case file")
     from .analysis import wear
     case = wear.read_case(args.case)
     result = wear.analyse(case, args.distance, args.points)
@@ -428,6 +463,9 @@ COMMANDS = (
     Command("host-env", "export lines of the environment a C host (libcosim, commercial tools) "
             "needs to run the FMUs with this Python", _host_env_arguments, _host_env),
     Command("scenarios", "list the shipped scenarios", _nothing, _scenarios),
+    Command("examples", "copy the example inputs (the paper commands' cases, a measured run, "
+            "the shipped scenarios) into a folder and list them", _examples_arguments,
+            _examples),
     Command("run", "co-simulate a scenario: results.csv, summary.json, plots", _run_arguments, _run),
     Command("sweep", "parameter sweep of a scenario on Dask workers: results table and plots "
             "(docs/sweep.md)", _sweep_arguments, _sweep),
@@ -511,8 +549,12 @@ def main(argv: list[str] | None = None) -> int:
 
 def entry() -> None:
     """The ``guideway-fmu`` command: :func:`main`, then the process ends without the
-    interpreter's finalisation (cosim.interrupts.exit_without_finalising)."""
+    interpreter's finalisation (cosim.interrupts.exit_without_finalising) once fmpy, through
+    which FMUs load, is loaded; a command that loaded none (an error told early) exits as
+    usual, without loading cosim to do so."""
     status = main()
+    if "fmpy" not in sys.modules:
+        sys.exit(status)
     from .cosim.interrupts import exit_without_finalising
     exit_without_finalising(status)
 

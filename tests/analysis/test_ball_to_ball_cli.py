@@ -2,13 +2,13 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import pytest
 
+from guideway_fmu import examples
 from guideway_fmu.cli import main
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "orchestration" / "ball_guides"
+EXAMPLES = examples.FOLDER / "ball_guides"
 CASE_A = EXAMPLES / "lin2019_case_a.toml"
 
 

@@ -3,15 +3,15 @@ Wu et al. (2012) Table 3."""
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 
+from guideway_fmu import examples
 from guideway_fmu.analysis import carriage_modes
 from guideway_fmu.cli import main
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "orchestration" / "ball_guides"
+EXAMPLES = examples.FOLDER / "ball_guides"
 BASE = """[carriage]
 mass = 0.313
 inertia = [9.938e-5, 6.136e-5, 1.394e-4]

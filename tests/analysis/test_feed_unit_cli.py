@@ -6,11 +6,12 @@ import json
 import numpy as np
 import pytest
 
+from guideway_fmu import examples
 from guideway_fmu.analysis import feed_unit as fa
 from guideway_fmu.cli import main
-from support import ORCHESTRATION, write_file
+from support import write_file
 
-EXAMPLES = ORCHESTRATION / "ball_guides"
+EXAMPLES = examples.FOLDER / "ball_guides"
 VERTICAL = EXAMPLES / "zhang2019_vertical_10kN.toml"
 CUTTING = EXAMPLES / "zhang2019_cutting_offset.toml"
 BASE = VERTICAL.read_text()

@@ -3,15 +3,15 @@ the errors."""
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 
+from guideway_fmu import examples
 from guideway_fmu.cli import main
 from guideway_fmu.physics.wear import fractal
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "orchestration" / "ball_guides"
+EXAMPLES = examples.FOLDER / "ball_guides"
 LG20 = EXAMPLES / "zhang_wear_lg20_2kN.toml"
 
 

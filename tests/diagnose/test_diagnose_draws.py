@@ -21,7 +21,8 @@ import pytest
 from guideway_fmu.diagnose import truth
 from guideway_fmu.diagnose.trials import run_batch
 
-pytestmark = pytest.mark.slow  # end-to-end: co-simulation or subprocess runs
+# end-to-end, two child processes at a time co-simulating (their own cores: runs alone)
+pytestmark = [pytest.mark.slow, pytest.mark.serial]
 
 DRAWS = [  # (seed, size, noise, uneven)
     (101, 1.0, 0.010, False),

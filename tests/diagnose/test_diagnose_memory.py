@@ -8,7 +8,9 @@ import pytest
 from guideway_fmu.diagnose import truth
 from guideway_fmu.diagnose.trials import diagnose_in_child
 
-pytestmark = pytest.mark.slow  # minutes: a million samples decided and co-simulated
+# minutes: a million samples decided and co-simulated. Not serial: the peak is the child's own
+# (os.wait4), which other processes do not change, and it takes one core like any test
+pytestmark = pytest.mark.slow
 
 BOUND = 2e9  # bytes of peak resident set size at 1e6 rows
 

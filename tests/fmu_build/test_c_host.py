@@ -15,6 +15,7 @@ import fmpy
 import numpy as np
 import pytest
 
+from guideway_fmu.components import registry
 from guideway_fmu.fmu_build import host_env
 
 pytestmark = pytest.mark.skipif(shutil.which("cc") is None and shutil.which("gcc") is None,
@@ -49,6 +50,11 @@ def start_values(fmu, table) -> dict:
     return {"table_file": str(table)} if fmu.stem == "ForceTable" else {}
 
 
+@pytest.fixture(scope="module")
+def environment():
+    return printed_environment()
+
+
 def test_host_env_prints_a_loadable_libpython_home_and_site_packages_with_numpy():
     env = printed_environment()
     assert set(env) == {"LD_PRELOAD", "PYTHONHOME", "PYTHONPATH"}
@@ -58,30 +64,26 @@ def test_host_env_prints_a_loadable_libpython_home_and_site_packages_with_numpy(
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("name", registry.names())  # one FMU each: the workers share them out
 def test_every_fmu_exits_cleanly_in_a_c_host_and_agrees_with_fmpy_to_12_digits(
-        fmu_dir, c_host, table, tmp_path):
-    env = printed_environment()
-    failures = []
-    for fmu in sorted(fmu_dir.glob("*.fmu")):
-        values = start_values(fmu, table)
-        runs = [host_env.run_in_c_host(c_host, fmu, env, work_dir=tmp_path, steps=STEPS,
-                                       start_values=values) for _ in range(RUNS_PER_FMU)]
-        failures += [(fmu.stem, r.status, r.stderr[-300:]) for r in runs if r.status != 0]
-        if runs[0].status != 0:
-            continue
-        md = fmpy.read_model_description(str(fmu))
-        h = float(md.defaultExperiment.stepSize)
-        names = list(runs[0].outputs)
-        ref = fmpy.simulate_fmu(str(fmu), step_size=h, output_interval=h, stop_time=STEPS * h,
-                                output=names, start_values=values, set_stop_time=False)
-        # 12 digits of each output's scale, the largest output of the same unit; below 1e-30
-        # (SI) a value is the round-off of a zero (a carriage at rest: 1e-36 rad), not a digit
-        unit = {v.name: v.unit or v.declaredType for v in md.modelVariables}
-        scale = {unit[n]: max(abs(ref[m][-1]) for m in names if unit[m] == unit[n]) for n in names}
-        for n in names:
-            assert abs(runs[0].outputs[n] - ref[n][-1]) <= max(1e-12 * scale[unit[n]], 1e-30), (fmu.stem, n)
-        assert all(r.outputs == runs[0].outputs for r in runs), fmu.stem
-    assert failures == []
+        name, fmu_dir, c_host, table, environment, tmp_path):
+    fmu = fmu_dir / f"{name}.fmu"
+    values = start_values(fmu, table)
+    runs = [host_env.run_in_c_host(c_host, fmu, environment, work_dir=tmp_path, steps=STEPS,
+                                   start_values=values) for _ in range(RUNS_PER_FMU)]
+    assert [(r.status, r.stderr[-300:]) for r in runs if r.status != 0] == []
+    md = fmpy.read_model_description(str(fmu))
+    h = float(md.defaultExperiment.stepSize)
+    names = list(runs[0].outputs)
+    ref = fmpy.simulate_fmu(str(fmu), step_size=h, output_interval=h, stop_time=STEPS * h,
+                            output=names, start_values=values, set_stop_time=False)
+    # 12 digits of each output's scale, the largest output of the same unit; below 1e-30
+    # (SI) a value is the round-off of a zero (a carriage at rest: 1e-36 rad), not a digit
+    unit = {v.name: v.unit or v.declaredType for v in md.modelVariables}
+    scale = {unit[n]: max(abs(ref[m][-1]) for m in names if unit[m] == unit[n]) for n in names}
+    for n in names:
+        assert abs(runs[0].outputs[n] - ref[n][-1]) <= max(1e-12 * scale[unit[n]], 1e-30), n
+    assert all(r.outputs == runs[0].outputs for r in runs)
 
 
 def test_failed_instantiate_names_the_cause_on_stderr_with_logging_off(fmu_dir, c_host, tmp_path):

@@ -13,7 +13,8 @@ import pytest
 from guideway_fmu.sweep import run, sweep_file
 from guideway_fmu.sweep.point import run_point
 
-pytestmark = pytest.mark.slow  # a cluster of worker processes and co-simulations
+# a Dask cluster of two worker processes (its own cores: runs alone) and co-simulations
+pytestmark = [pytest.mark.slow, pytest.mark.serial]
 
 POINTS = """[design]
 kind = "points"

@@ -52,14 +52,17 @@ def _g(value: float) -> str:
     return f"{value:.4g}"
 
 
-def write_index(out: Path, fmus: Path, stop: float, summary: dict, scenarios: tuple[str, ...],
-                verified: str) -> Path:
+def write_index(out: Path, fmus: Path | None, fmu_dir: Path, stop: float, summary: dict,
+                scenarios: tuple[str, ...], verified: str) -> Path:
     """Write ``out``/index.html from the demo's ``summary`` and the files it wrote into ``out``
-    (run with FMUs from ``fmus``, runs of ``stop`` seconds); returns its path."""
+    (runs of ``stop`` seconds with the FMUs in ``fmu_dir``: the folder ``fmus`` given to the
+    demo, or the FMU cache's when None, which the commands shown then find themselves);
+    returns its path."""
+    option = () if fmus is None else ("--fmus", fmus)  # the commands' FMU option
     body = ["<h1>guideway-fmu demo</h1>",
-            "<p>Everything below was made by one command; the FMUs it built are in "
-            f"{html.escape(str(fmus))}, the numbers in summary.json.</p>",
-            f"<pre>{html.escape(command('demo', '--out', out, '--fmus', fmus, '--stop', stop))}</pre>"]
+            "<p>Everything below was made by one command; the FMUs it ran are in "
+            f"{html.escape(str(fmu_dir))}, the numbers in summary.json.</p>",
+            f"<pre>{html.escape(command('demo', '--out', out, *option, '--stop', stop))}</pre>"]
     body += _section(
         "Quasi-static stiffness of the guideway (Soleimanian et al. 2020, Figs. 3 and 4)",
         "The stiffness K = dF_contact/dy of the roller contacts against the vertical displacement "
@@ -88,19 +91,19 @@ def write_index(out: Path, fmus: Path, stop: float, summary: dict, scenarios: tu
     for name in scenarios:
         files = json.loads((out / name / "summary.json").read_text())["files"]
         body.append(f"<h3>{html.escape(name)}</h3>"
-                    f"<pre>{html.escape(command('run', name, '--fmus', fmus, '--stop', stop, '--out', out / name))}</pre>")
+                    f"<pre>{html.escape(command('run', name, *option, '--stop', stop, '--out', out / name))}</pre>")
         for file in files:
             if file.endswith(".png"):
                 body += _image(out, out / name / file, KIND_TEXT[Path(file).stem])
-    body += _verification(out, fmus, stop, verified)
-    body += _sweep(out, fmus, summary["sweep"])
-    body += _diagnosis(out, fmus, summary["diagnose"])
+    body += _verification(out, option, stop, verified)
+    body += _sweep(out, option, summary["sweep"])
+    body += _diagnosis(out, option, summary["diagnose"])
     path = out / "index.html"
     path.write_text(pages.page("guideway-fmu demo", body), encoding="utf-8")
     return path
 
 
-def _verification(out: Path, fmus: Path, stop: float, verified: str) -> list[str]:
+def _verification(out: Path, option: tuple, stop: float, verified: str) -> list[str]:
     report = json.loads((out / "verify.json").read_text())
     body = _section(
         "Co-simulation against the monolithic reference",
@@ -109,13 +112,13 @@ def _verification(out: Path, fmus: Path, stop: float, verified: str) -> list[str
         "grid: the RMS and the largest difference of every recorded signal, relative to its "
         f"range. Wall time: co-simulation {report['wall_time_cosim']:.2f} s, reference "
         f"{report['wall_time_reference']:.2f} s. The numbers are in verify.json (--json).",
-        command("verify", verified, "--fmus", fmus, "--stop", stop))
+        command("verify", verified, *option, "--stop", stop))
     rows = [(name, f"{rms:.2e}", f"{report['peak_error'][name]:.2e}")
             for name, rms in report["rms_error"].items()]
     return body + [pages.table(rows, ["signal", "RMS error / range", "peak error / range"])]
 
 
-def _sweep(out: Path, fmus: Path, sweep: dict) -> list[str]:
+def _sweep(out: Path, option: tuple, sweep: dict) -> list[str]:
     folder = out / sweep["folder"]
     data = json.loads((folder / "results.json").read_text())
     body = _section(
@@ -127,7 +130,7 @@ def _sweep(out: Path, fmus: Path, sweep: dict) -> list[str]:
         f"{sweep['wall_time_s']:.1f} s. The tables are results.csv and results.json in "
         f"{sweep['folder']}; the command (into a folder without results.csv, or with --resume "
         "to continue one):",
-        command("sweep", out / sweep["file"], "--fmus", fmus, "--workers", sweep["workers"],
+        command("sweep", out / sweep["file"], *option, "--workers", sweep["workers"],
                 "--out", folder))
     columns = [o["column"] for o in data["outputs"]]
     units = [o["unit"] or "-" for o in data["outputs"]]
@@ -145,7 +148,7 @@ def _sweep(out: Path, fmus: Path, sweep: dict) -> list[str]:
     return body
 
 
-def _diagnosis(out: Path, fmus: Path, diagnosis: dict) -> list[str]:
+def _diagnosis(out: Path, option: tuple, diagnosis: dict) -> list[str]:
     folder = out / "diagnose_example"
     body = _section(
         "Diagnosis of a measured run",
@@ -154,7 +157,7 @@ def _diagnosis(out: Path, fmus: Path, diagnosis: dict) -> list[str]:
         "calibrates a baseline model, ranks candidate effects on held-out samples and names the "
         "missing one. The full report, with how every number was obtained, is "
         "diagnose_example/report.html.",
-        command("diagnose", folder / "run", "--out", folder, "--fmus", fmus))
+        command("diagnose", folder / "run", "--out", folder, *option))
     body.append("<p><a href='diagnose_example/report.html'>diagnosis report</a></p>")
     rows = [("hidden effect", diagnosis["hidden_effect"]),
             ("named effect", diagnosis["missing_effect"]),

@@ -9,6 +9,7 @@ import time as clock
 from pathlib import Path
 
 from ..cosim.folder_lock import folder_lock
+from ..fmu_build import cache
 from .decide import decide
 from .realise import realise
 from .report import write_report, write_vertical_report
@@ -19,17 +20,17 @@ from .vertical import decide_vertical, realise_vertical
 def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
     """Diagnose the measured run in ``run_dir``; write everything into ``out_dir``.
 
-    ``fmu_dir``: where to find (or build) the FMUs, by default ``out_dir``/fmus. Returns the
-    content of diagnosis.json. Raises FileNotFoundError or ValueError (one message naming the
-    file and the row, column, section or key) for a run that cannot be used, and FolderInUse
-    (cosim/folder_lock.py) if another diagnosis or run writes into ``out_dir``: it is locked
-    meanwhile.
+    ``fmu_dir``: where to find (or build) the FMUs, by default the FMU cache's folder
+    (fmu_build.cache). Returns the content of diagnosis.json. Raises FileNotFoundError or
+    ValueError (one message naming the file and the row, column, section or key) for a run that
+    cannot be used, and FolderInUse (cosim/folder_lock.py) if another diagnosis or run writes
+    into ``out_dir``: it is locked meanwhile.
     """
     started = clock.perf_counter()
     out = Path(out_dir)
-    fmus = Path(fmu_dir) if fmu_dir is not None else out / "fmus"
+    run = load_run(run_dir)
+    fmus = Path(fmu_dir) if fmu_dir is not None else cache.folder()
     with folder_lock(out):
-        run = load_run(run_dir)
         if run.kind == "vertical_response":
             naming = decide_vertical(run, out / "model", fmus)
             realised = realise_vertical(naming, out)

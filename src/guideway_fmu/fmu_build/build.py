@@ -30,6 +30,8 @@ from . import exit_patch
 
 RUNTIME = runtime.__name__  # shipped with every FMU, which imports it first (SLAVE_SCRIPT)
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
+#: the modules that pack an FMU (the slave script, the runtime's move, the exit patch)
+BUILDER = (Path(__file__).resolve(), Path(exit_patch.__file__).resolve())
 SLAVE_SCRIPT = '''"""pythonfmu entry point of {name}."""
 import sys
 import traceback
@@ -56,10 +58,11 @@ def shipped_files(cls: type) -> list[Path]:
 
 
 def code_hash(files: list[Path], data: dict[str, Path] | None = None) -> str:
-    """Short hash of the code an FMU ships (``files`` and the runtime's version) and of the
-    ``data`` files it carries (name in its package -> file)."""
+    """Short hash of the code an FMU ships (``files`` and the runtime's version), of the code
+    that packs it (BUILDER) and of the ``data`` files it carries (name in its package -> file):
+    FMUs of equal hashes are alike (the FMU cache, fmu_build.cache, keys them by it)."""
     digest = hashlib.sha256(pythonfmu.__version__.encode())
-    for path in files:
+    for path in (*BUILDER, *files):
         digest.update(str(path.relative_to(PACKAGE_DIR)).encode())
         digest.update(path.read_bytes())
     for name, path in sorted((data or {}).items()):

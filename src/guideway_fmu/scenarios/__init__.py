@@ -3,17 +3,14 @@ and the vertical rig that replays a record (:func:`vertical_rig`).
 
 Written by the ``orchestration/make_*_scenarios.py`` scripts (edit those, not the files). They
 name their FMUs by file name only, so every command finds them in one FMU folder (``--fmus``,
-default ``./fmus``, built on demand) from any working directory.
+default the FMU cache's, built on demand: fmu_build.cache) from any working directory. Finding
+a scenario imports nothing heavy: a wrong name is reported at once.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
-from ..physics.roller_guide.contact_model import OUTPUTS
-
 FOLDER = Path(__file__).resolve().parent
-#: the contact's force law over a step (roller_law.OpposedRows), handed to the carriage
-LAW = tuple(name for name in OUTPUTS if name.startswith("law_"))
 
 
 def coupling(carriage: str = "Carriage", contact: str = "Contact") -> list[tuple[str, str]]:
@@ -27,13 +24,15 @@ def coupling(carriage: str = "Carriage", contact: str = "Contact") -> list[tuple
 def couple_contact(builder, lubricated: bool, carriage: str = "Carriage", contact: str = "Contact"):
     """Couple a VerticalDynamics ``carriage`` and a roller ``contact`` in ``builder`` (a
     cosim.system.Builder): the connections of :func:`coupling`, and the stabilised coupling's
-    tangent with the contact's force law; a ``lubricated`` contact takes its inputs as they
-    hold at the end of the step."""
+    tangent with the contact's force law (the contact's ``law_*`` outputs, roller_law.OpposedRows);
+    a ``lubricated`` contact takes its inputs as they hold at the end of the step."""
+    from ..physics.roller_guide.contact_model import OUTPUTS
+    law = [name for name in OUTPUTS if name.startswith("law_")]
     for source, target in coupling(carriage, contact):
         builder.connect(source, target)
     builder.tangent(f"{contact}.F_contact", f"{contact}.y", f"{contact}.K_contact",
                     f"{carriage}.K_contact", f"{contact}.y_dot", f"{contact}.C_contact",
-                    f"{carriage}.C_contact", model={n: f"{carriage}.{n}" for n in LAW},
+                    f"{carriage}.C_contact", model={n: f"{carriage}.{n}" for n in law},
                     settings={"interpolate_inputs": True} if lubricated else None)
     return builder
 
@@ -94,9 +93,12 @@ def is_shipped(path: Path) -> bool:
 
 
 def fmu_folder(path: Path, fmus: str | Path | None) -> Path | None:
-    """The FMU folder the scenario file ``path`` runs with: ``fmus`` when given, ``./fmus``
-    (built where missing) for a shipped scenario, else None (the FMU paths in the file)."""
-    if fmus is None and is_shipped(path):
-        from ..fmu_build import build
-        return build.ensure(Path("fmus"))
-    return None if fmus is None else Path(fmus)
+    """The FMU folder the scenario file ``path`` runs with: ``fmus`` when given, the FMU
+    cache's (built where missing) for a shipped scenario, else None (the FMU paths in the
+    file)."""
+    if fmus is not None:
+        return Path(fmus)
+    if is_shipped(path):
+        from ..fmu_build import cache
+        return cache.folder()
+    return None

@@ -10,7 +10,6 @@ import itertools
 import json
 
 import numpy as np
-from scipy.stats import qmc
 
 
 def factorial(levels: dict[str, list]) -> list[dict]:
@@ -24,6 +23,7 @@ def latin_hypercube(ranges: dict[str, tuple[float, float]], samples: int, seed: 
     """``samples`` points of a Latin hypercube (scipy.stats.qmc.LatinHypercube, seeded) scaled to
     ``ranges`` {name: (low, high)}: along every parameter each of ``samples`` equal bins of
     [low, high) holds exactly one point."""
+    from scipy.stats import qmc  # here: scipy.stats takes long to import
     unit = qmc.LatinHypercube(len(ranges), seed=seed).random(samples)
     low, high = np.array(list(ranges.values()), dtype=float).T
     scaled = qmc.scale(unit, low, high)

@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import trapezoid
 
 from ..numerics.spectrum import spectrum, uniform_grid
 from ..cosim.recording import Recording
@@ -24,6 +23,7 @@ def peak(time, values) -> float:
 
 
 def rms(time, values) -> float:
+    from scipy.integrate import trapezoid  # here: scipy.integrate takes long to import
     return float(np.sqrt(trapezoid(np.square(values), time) / (time[-1] - time[0])))
 
 

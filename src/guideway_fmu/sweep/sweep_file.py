@@ -44,7 +44,8 @@ def nested(point: dict) -> dict[str, dict]:
 
 def load(path: str | Path, fmu_dir: str | Path | None = None) -> Sweep:
     """Read and check a sweep file. Its ``scenario`` is a path relative to the file or a shipped
-    scenario's name; FMUs as for ``guideway-fmu run`` (``fmu_dir``, or ./fmus for a shipped one)."""
+    scenario's name; FMUs as for ``guideway-fmu run`` (``fmu_dir``, or the FMU cache's for a
+    shipped one)."""
     path = Path(path)
     src = str(path)
     top = TomlTable(src, "top level", read_toml(path, "the sweep file"))
