@@ -1,13 +1,15 @@
 """Helpers the tests import (``from support import ...``): files written for a test, scripts of
-orchestration/ loaded as modules, the real records found through GUIDEWAY_FMU_DATA, and an FMU
-with an unsafe archive entry."""
+orchestration/ loaded as modules, the real records found through GUIDEWAY_FMU_DATA, an FMU
+with an unsafe archive entry, and a guard against calls that never return."""
 from __future__ import annotations
 
 import importlib.util
 import os
+import signal
 import stat
 import sys
 import zipfile
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -76,3 +78,20 @@ def with_entry(fmu, out, name, mode):
         info.create_system, info.external_attr = 3, mode
         dst.writestr(info, "/etc/passwd" if mode == SYMLINK else "x")
     return out
+
+
+@contextmanager
+def returns(within: float = 60.0):
+    """Fail the test, rather than hang the run, when the block has not finished ``within``
+    seconds: the guard of a call that looped without end before its fix. Far above what the
+    call takes, it measures nothing (SIGALRM: the main thread of a POSIX process)."""
+    def expired(signum, frame):
+        raise AssertionError(f"the call did not return within {within} s: an unbounded loop")
+
+    previous = signal.signal(signal.SIGALRM, expired)
+    signal.setitimer(signal.ITIMER_REAL, within)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        signal.signal(signal.SIGALRM, previous)

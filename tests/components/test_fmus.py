@@ -814,11 +814,20 @@ def slave_parameters():
     return BallCarriage5DOF(instance_name="defaults", resources=None).parameter_values()
 
 
-def test_ball_carriage_without_equilibrium_at_the_start_discards_steps_saying_why(open_fmu):
-    # a lateral force alone drives the motion two rows of balls do not resist (Wu et al.'s model)
-    slave = open_fmu("BallCarriage5DOF", static_F_y=5.0)
-    assert_discarded(slave, 1e-5, "no ball resists")
-    assert_discarded(slave, 1e-5, "no ball resists")  # not fatal, still refused
+def test_ball_carriage_without_equilibrium_at_the_start_fails_initialisation_saying_why(fmu_dir):
+    # a lateral force alone drives the motion two rows of balls do not resist (Wu et al.'s model):
+    # no start in static equilibrium, an error of exitInitializationMode (before: fmi2OK, then
+    # every step discarded)
+    from guideway_fmu.cosim.fmu_instance import FmuInstance
+
+    inst = FmuInstance(fmu_dir / "BallCarriage5DOF.fmu", "carriage")
+    try:
+        with pytest.raises(FMICallException) as info:
+            inst.initialise(0.0, {"static_F_y": 5.0})
+        assert info.value.status == STATUS_ERROR
+        assert any("no ball resists" in line for line in inst.log), list(inst.log)
+    finally:
+        inst.close()  # the instance is kept after fmi2Error: terminated and freed as usual
 
 
 def test_feed_unit_fmu_under_a_central_vertical_load_hand_calculation(open_fmu):

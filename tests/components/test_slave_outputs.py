@@ -1,6 +1,9 @@
-"""The output guard of every component (components/base.py): outputs are kept only when each is
-finite, judged from their sum where that is finite and value by value where it is not."""
+"""The output guard of every component (components/base.py): outputs are given only when each is
+finite, judged from their sum where that is finite and value by value where it is not; else the
+getter raises (fmi2Error through the FMU), except after a discarded step."""
 from __future__ import annotations
+
+import pytest
 
 from guideway_fmu.components.base import GuidewaySlave
 
@@ -32,8 +35,28 @@ def test_limiting_case_finite_outputs_whose_sum_overflows_are_kept():
     assert _values(slave) == [1e308, 1e308]
 
 
-def test_limiting_case_an_infinite_output_keeps_the_last_valid_values():
+def _set_x(slave, x):
+    slave.set_real([next(vr for vr, v in slave.vars.items() if v.name == "x")], [x])
+
+
+def test_limiting_case_an_infinite_output_is_an_error_naming_it():
+    # before, the getter logged the error and returned the last valid values under fmi2OK
     slave = Doubling(instance_name="doubling", resources=None)
     _values(slave)
-    slave.set_real([next(vr for vr, v in slave.vars.items() if v.name == "x")], [2.0])
-    assert _values(slave) == [1e308, 1e308]
+    _set_x(slave, 2.0)
+    with pytest.raises(ValueError, match=r"outputs \{'a': inf, 'b': inf\} are not finite"):
+        _values(slave)
+
+
+def test_after_a_discarded_step_the_outputs_of_the_last_successful_time_are_read():
+    slave = Doubling(instance_name="doubling", resources=None)
+    _values(slave)
+    _set_x(slave, 2.0)
+    assert slave.do_step(0.0, -1.0) is False  # a bad step size: fmi2Discard
+    assert _values(slave) == [1e308, 1e308]  # FMI lets the host read them after the discard
+    _set_x(slave, 0.5)
+    assert slave.do_step(0.0, 1e-3) is True
+    assert _values(slave) == [5e307, 5e307]
+    _set_x(slave, 2.0)
+    with pytest.raises(ValueError, match="not finite"):  # a new error, met by the getter
+        _values(slave)

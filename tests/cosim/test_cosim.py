@@ -200,7 +200,11 @@ def test_stability_stabilised_bounded_where_explicit_coupling_diverges(tmp_path,
     # for Jacobi at every step (ARCHITECTURE.md); the stabilised coupling stays at 2e-7 m.
     amplitude = {}
     for alg in ("jacobi", "stabilised"):
-        rec = master.simulate(rig(tmp_path, fmu_dir, stop=5e-3, step=2e-5, algorithm=alg)).recording
+        try:
+            rec = master.simulate(rig(tmp_path, fmu_dir, stop=5e-3, step=2e-5, algorithm=alg)).recording
+        except master.SimulationError as exc:  # Jacobi's carriage runs away until the
+            assert alg == "jacobi" and "are not finite" in str(exc)  # contact's loads overflow
+            rec = exc.result.recording
         amplitude[alg] = np.abs(rec.columns["Carriage.y"]).max()
     assert amplitude["stabilised"] < 2.2e-7
     assert amplitude["jacobi"] > 1e-5

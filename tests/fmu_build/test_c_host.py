@@ -128,3 +128,17 @@ def test_host_env_check_of_a_file_that_is_no_fmu_is_a_clear_error(tmp_path):
                            str(junk)], capture_output=True, text=True)
     assert done.returncode == 2 and "Traceback" not in done.stderr
     assert f"{junk}: not an FMU that can be read" in done.stderr
+
+
+def test_an_fmu_finds_its_resources_under_a_path_a_uri_escapes(fmu_dir, c_host, tmp_path):
+    # the C host passes the resource URI percent-encoded, as FMI asks: before the build decoded
+    # it (fmu_build/uri_patch.py), pythonfmu looked for its script under the escaped path and
+    # the host died in fmi2Instantiate (SIGSEGV). The host runs in a UTF-8 locale, as a user's
+    # tool does: in the C locale the embedded interpreter can encode no such path (ASCII), and
+    # the instantiation fails with that message
+    awkward = tmp_path / "Jürgen tmp+%41"
+    awkward.mkdir()
+    run = host_env.run_in_c_host(c_host, fmu_dir / "FeedKinematics.fmu",
+                                 {**printed_environment(), "LC_ALL": "C.UTF-8"}, work_dir=awkward)
+    assert run.status == 0, run.stderr[-2000:]
+    assert set(run.outputs) and all(np.isfinite(list(run.outputs.values())))

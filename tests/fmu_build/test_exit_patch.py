@@ -5,7 +5,7 @@ from pathlib import Path
 import pythonfmu
 import pytest
 
-from guideway_fmu.fmu_build import exit_patch
+from guideway_fmu.fmu_build import elf, exit_patch
 
 SHIPPED = (Path(pythonfmu.__file__).parent / "resources" / "binaries" / "linux64"
            / "libpythonfmu-export.so")
@@ -15,7 +15,7 @@ def test_patch_changes_one_byte_to_ret_after_the_functions_endbr64_and_is_idempo
     original = SHIPPED.read_bytes()
     patched = exit_patch.patch(original)
     changed = [i for i, (a, b) in enumerate(zip(original, patched)) if a != b]
-    at = exit_patch.function_offset(original)
+    at = elf.function_offset(original, exit_patch.SYMBOL)
     assert len(patched) == len(original) and changed == [at + 4]
     assert patched[at:at + 5] == bytes.fromhex("f30f1efa") + b"\xc3"
     assert exit_patch.patch(patched) == patched
@@ -23,14 +23,14 @@ def test_patch_changes_one_byte_to_ret_after_the_functions_endbr64_and_is_idempo
 
 def test_patch_refuses_a_binary_it_does_not_know():
     original = SHIPPED.read_bytes()
-    at = exit_patch.function_offset(original)
+    at = elf.function_offset(original, exit_patch.SYMBOL)
     other = original[:at] + b"\x55" + original[at + 1:]  # another prologue
-    with pytest.raises(exit_patch.ExitPatchError, match="does not start as in pythonfmu 0.7"):
+    with pytest.raises(elf.PatchError, match="does not start as in pythonfmu 0.7"):
         exit_patch.patch(other)
-    with pytest.raises(exit_patch.ExitPatchError, match="not a 64-bit little-endian ELF"):
+    with pytest.raises(elf.PatchError, match="not a 64-bit little-endian ELF"):
         exit_patch.patch(b"MZ" + original[2:])
-    with pytest.raises(exit_patch.ExitPatchError, match="no function nothing"):
-        exit_patch.function_offset(original, b"nothing")
+    with pytest.raises(elf.PatchError, match="no function nothing"):
+        elf.function_offset(original, b"nothing")
 
 
 def test_patch_fmu_patches_the_linux_binary_and_keeps_every_other_entry(tmp_path):

@@ -1,18 +1,27 @@
 """Common machinery of the guideway FMUs (pythonfmu slaves).
 
-pythonfmu 0.7 turns any Python exception raised inside an FMI call into fmi2Fatal, which ends
-every FMU instance of the process. The components therefore never raise through FMI:
+The rule: an FMU that logs an error returns a status other than fmi2OK from the FMI call that
+met it; it never hands out NaN, nor stale values under fmi2OK. Every error is logged naming the
+variable or the input that caused it, and printed on stderr (pythonfmu drops messages when
+logging is off). pythonfmu 0.7 (its C++ wrapper: PySlaveInstance.cpp, fmi2.cpp) gives a Python
+slave two statuses besides fmi2OK: ``do_step`` returning False is fmi2Discard (reported with
+fmi2Terminated), and an exception raised in any call is fmi2Error in our Linux binaries
+(fmu_build/error_patch.py; pythonfmu as shipped, and so our Windows binaries, report fmi2Fatal
+and release the instance, after which FMI allows no call into the FMU). Getters and
+``exit_initialization_mode`` have no other way to fail. Hence:
 
 * setters only store values; parameters and inputs are checked when they are used;
-* a bad parameter or input makes ``doStep`` log an error naming the variable (and print it on
-  stderr, since pythonfmu drops messages when logging is off) and return fmi2Discard (the only
-  non-fatal failure status pythonfmu can return; it reports fmi2Terminated with it, so a master
-  that follows the standard stops rather than repeating the step), leaving the state and the
-  outputs at their last valid values;
-* output getters evaluate the model from the current inputs (direct feedthrough) and, when that
-  fails, log the error and return the last valid values, never NaN; in Initialization Mode they
-  first set the internal state from the present parameters and inputs, as leaving it will, so
-  a host that records the initial outputs records what the first step starts from.
+* ``doStep`` with a bad parameter or input, or a model that fails over the step, returns
+  fmi2Discard and leaves the state at the last successful communication point. FMI lets a host
+  read the outputs there after a discarded step: until a step succeeds again (or an FMU state is
+  set), a getter that cannot evaluate returns the outputs last evaluated;
+* ``exit_initialization_mode`` sets the internal state from the parameters and inputs, and
+  raises when it cannot;
+* output getters evaluate the model from the current inputs (direct feedthrough), and raise
+  when that fails or gives an output that is not finite, unless a discarded step came before
+  (above); in Initialization Mode they first set the internal state from the present parameters
+  and inputs, as leaving it will, so a host that records the initial outputs records what the
+  first step starts from.
 
 The modelDescription written by :meth:`to_xml` adds what pythonfmu leaves out: units with base
 units for every Real variable, and ModelStructure with Outputs and InitialUnknowns listing the
@@ -66,6 +75,7 @@ class GuidewaySlave(Fmi2Slave):
         self._model = None
         self._inputs_checked = False  # since the last input or parameter was set
         self._initialising = False
+        self._discarded = False  # the last step was discarded (and no state set since)
         self._printed: str | None = None  # the error last printed, until a call succeeds
         self._described = _described_starts(self.resources)
 
@@ -178,18 +188,18 @@ class GuidewaySlave(Fmi2Slave):
             self._model = self.build_model()
         return self._model
 
-    def _guarded(self, action):
-        try:
-            self.model()
-            if not self._inputs_checked:  # once per set of inputs: a step and its outputs share it
-                self.check_inputs()
-                self._inputs_checked = True
-            done = action()
-        except Exception as exc:  # noqa: BLE001 - an exception here would be fmi2Fatal
-            self._error(str(exc))
-            return None
-        self._printed = None
-        return done
+    def _checked(self, action):
+        """``action()`` with the model built and the inputs checked."""
+        self.model()
+        if not self._inputs_checked:  # once per set of inputs: a step and its outputs share it
+            self.check_inputs()
+            self._inputs_checked = True
+        return action()
+
+    def _report(self, exc: Exception) -> None:
+        """Log the failure ``exc`` (the project's errors name what failed; others their type)."""
+        self._error(str(exc) if isinstance(exc, (ValueError, RuntimeError))
+                    else f"{type(exc).__name__}: {exc}")
 
     def _error(self, message: str) -> None:
         """Log ``message`` as an error (every failing call says why), and print it on stderr:
@@ -201,24 +211,31 @@ class GuidewaySlave(Fmi2Slave):
             self._printed = message
             print(f"{type(self).__name__} {self.instance_name}: {message}", file=sys.stderr)
 
-    def _initialise_guarded(self) -> None:
-        self._guarded(lambda: self.initialise() or True)
-
     def enter_initialization_mode(self):
         self._initialising = True
 
     def exit_initialization_mode(self):
         self._initialising = False
-        self._initialise_guarded()
         self._outputs = None
+        try:
+            self._checked(self.initialise)
+        except Exception as exc:
+            self._report(exc)
+            raise  # fmi2Error (module doc)
+        self._printed = None
 
     def do_step(self, current_time: float, step_size: float) -> bool:
-        if not (math.isfinite(step_size) and step_size > 0.0):
-            self._error(f"communication step size must be > 0, got {step_size}")
-            return False
-        ok = self._guarded(lambda: self.advance(current_time, step_size) or True)
         self._outputs = None
-        return bool(ok)
+        try:
+            if not (math.isfinite(step_size) and step_size > 0.0):
+                raise ValueError(f"communication step size must be > 0, got {step_size}")
+            self._checked(lambda: self.advance(current_time, step_size))
+        except Exception as exc:  # noqa: BLE001 - a failed step is discarded, not an error
+            self._report(exc)
+            self._discarded = True
+            return False  # fmi2Discard
+        self._discarded, self._printed = False, None
+        return True
 
     # pythonfmu's get_real and set_real, which its C side calls by name, pass each variable
     # through its getter or setter; a batch of outputs alone (or of Real inputs alone), what a
@@ -244,20 +261,30 @@ class GuidewaySlave(Fmi2Slave):
         return float(self._evaluated().get(name, 0.0))
 
     def _evaluated(self) -> dict[str, float]:
-        """The outputs by name: evaluated from the present inputs, or the last valid ones."""
+        """The outputs by name, evaluated from the present inputs; after a discarded step, where
+        they cannot be, those last evaluated (module doc). Raises otherwise."""
         if self._outputs is None:
-            if self._initialising:  # the outputs as initialization will leave them
-                self._initialise_guarded()
-            values = self._guarded(self.evaluate)
-            # a finite sum has finite terms; only an overflowing or non-finite one needs a look
-            if values is not None and (math.isfinite(sum(values.values()))
-                                       or all(math.isfinite(v) for v in values.values())):
-                self._last_valid = values
-            elif values is not None:
-                bad = [k for k, v in values.items() if not math.isfinite(v)]
-                self._error(f"outputs {bad} are not finite; keeping the last valid values")
-            self._outputs = self._last_valid
+            try:
+                self._outputs = self._last_valid = self._checked(self._evaluate)
+                self._printed = None
+            except Exception as exc:
+                if not (self._discarded and self._last_valid):
+                    self._report(exc)
+                    raise  # fmi2Error (module doc)
+                self._outputs = self._last_valid  # the outputs at the last successful time
         return self._outputs
+
+    def _evaluate(self) -> dict[str, float]:
+        """:meth:`evaluate`, in Initialization Mode from the state initialisation will set;
+        ValueError naming the outputs that are not finite."""
+        if self._initialising:  # the outputs as initialization will leave them
+            self.initialise()
+        values = self.evaluate()
+        # a finite sum has finite terms; only an overflowing or non-finite one needs a look
+        if math.isfinite(sum(values.values())) or all(math.isfinite(v) for v in values.values()):
+            return values
+        bad = {k: v for k, v in values.items() if not math.isfinite(v)}
+        raise ValueError(f"outputs {bad} are not finite at the present inputs")
 
     # -- FMU state ----------------------------------------------------------------------
     def _get_fmu_state(self):
@@ -276,6 +303,7 @@ class GuidewaySlave(Fmi2Slave):
                 self._last_valid = dict(value)
             else:
                 setattr(self, name, value)
+        self._discarded = False
         self._changed(parameter=True)
 
     # -- modelDescription ---------------------------------------------------------------

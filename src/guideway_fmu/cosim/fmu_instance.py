@@ -10,7 +10,7 @@ from itertools import groupby
 from ctypes import byref
 from pathlib import Path
 
-from fmpy import extract, read_model_description
+from fmpy import extract, platform, read_model_description, sharedLibraryExtension
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (FMU2Slave, fmi2Boolean, fmi2CallbackAllocateMemoryTYPE,
                        fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE,
@@ -19,6 +19,8 @@ from fmpy.fmi2 import calloc, free
 from fmpy.logging import addLoggerProxy
 
 from ..fmi.archive import check_entries
+from ..fmu_build import uri_patch
+from ..fmu_build.elf import PatchError
 
 _CTYPES = {"Real": fmi2Real, "Integer": fmi2Integer, "Boolean": fmi2Boolean, "Enumeration": fmi2Integer}
 _STATUS = ["ok", "warning", "discard", "error", "fatal", "pending"]
@@ -67,6 +69,7 @@ class FmuInstance:
         _UNPACKED.add(self._unzip)
         try:
             extract(str(self.path), self._unzip)
+            self._check_resource_path(cs.modelIdentifier)
             self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=self._unzip,
                                  modelIdentifier=cs.modelIdentifier, instanceName=name)
             self._callbacks = fmi2CallbackFunctions()
@@ -79,6 +82,26 @@ class FmuInstance:
         except BaseException:
             self.remove_files()  # no instance: nothing else to free
             raise
+
+    def _check_resource_path(self, model_identifier: str) -> None:
+        """Refuse (ValueError) a pythonfmu FMU that would not find its resources where it was
+        extracted: pythonfmu 0.7's fmi2Instantiate decodes no escape of the resource URI but
+        %20 and then crashes the process; our builds decode them (fmu_build/uri_patch.py)."""
+        uri = Path(self._unzip, "resources").as_uri()
+        if "%" not in uri.replace("%20", "") or not (
+                self.description.generationTool or "").startswith("PythonFMU"):
+            return
+        binary = Path(self._unzip, "binaries", platform, model_identifier + sharedLibraryExtension)
+        try:
+            if uri_patch.decodes(binary.read_bytes()):
+                return
+        except (OSError, PatchError):
+            pass  # no binary for this platform (fmpy names it next), or not one we fixed
+        raise ValueError(
+            f"{self.name}: FMU {self.path.name} is built with pythonfmu, whose fmi2Instantiate "
+            f"cannot find its resources under {self._unzip} (it decodes no escape of the "
+            f"resource URI {uri} but %20, and crashes): set TMPDIR to a folder whose path has "
+            f"ASCII letters, digits, spaces and -._~/ only")
 
     @staticmethod
     def _on_log(env, instance, status, category, message):

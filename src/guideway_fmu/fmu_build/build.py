@@ -26,8 +26,9 @@ from pythonfmu.builder import FmuBuilder
 
 from ..components import registry, runtime
 from ..fmi.archive import rewrite
-from . import exit_patch
+from . import error_patch, exit_patch, uri_patch
 
+LINUX = "binaries/linux64/"  # where an FMU keeps its Linux binary
 RUNTIME = runtime.__name__  # shipped with every FMU, which imports it first (SLAVE_SCRIPT)
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 #: the modules that pack an FMU (the slave script, the runtime's move, the exit patch)
@@ -128,14 +129,17 @@ def _forget(tags: list[str]) -> None:
 
 def _finish(fmu: Path, package: str) -> Path:
     """Move the pythonfmu runtime the builder put in ``resources/pythonfmu`` (shared by every
-    pythonfmu FMU of a process) into the FMU's own package as ``_pythonfmu``, and make the Linux
-    binary safe at exit (:mod:`.exit_patch`); returns ``fmu``."""
+    pythonfmu FMU of a process) into the FMU's own package as ``_pythonfmu``, and fix the Linux
+    binary: safe at exit (:mod:`.exit_patch`), fmi2Error for a Python exception
+    (:mod:`.error_patch`), resources under any path (:mod:`.uri_patch`); returns ``fmu``."""
     shared, private = "resources/pythonfmu/", f"resources/{package}/_pythonfmu/"
 
     def finish(name: str, data: bytes) -> tuple[str, bytes]:
         if name.startswith(shared):
             name = private + name[len(shared):]
-        return exit_patch.patch_entry(name, data)
+        name, data = exit_patch.patch_entry(name, data)
+        return name, (uri_patch.patch(error_patch.patch(data)) if name.startswith(LINUX)
+                      else data)
 
     return rewrite(fmu, fmu, finish)
 

@@ -11,6 +11,7 @@
   horizontal drive rig, a replayed force table and the friction laws the discrepancy workflow
   adds to a rig;
 * ``papers``: each paper's parameter tables, the one home of their values;
-* shared: ``dynamics`` (the continuous-time model every FMU and the reference step) and
-  ``checks`` (argument checks with named errors).
+* shared: ``dynamics`` (the continuous-time model every FMU and the reference step),
+  ``checks`` (argument checks with named errors) and ``roots`` (bounded root finding whose
+  failure names what was solved for).
 """

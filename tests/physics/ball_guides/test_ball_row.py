@@ -7,6 +7,7 @@ from scipy.integrate import solve_ivp
 from guideway_fmu.physics.ball_guides import ball_row
 from guideway_fmu.physics.ball_guides import ball_to_ball as bb
 from guideway_fmu.physics.dynamics import rk4_step
+from support import returns
 
 THETA = np.radians(2.0)
 RADIUS = 5e-3
@@ -139,3 +140,28 @@ def test_advance_across_a_closing_gap_matches_a_tight_adaptive_integration():
     assert plain > 1e-9  # the jump costs a plain step a share of the gap
     assert located < 1e-3 * plain
     assert model.gaps(model.advance(0.0, state, inputs, h))[0] <= ball_row.CLOSED
+
+
+def test_limiting_case_a_feed_speed_beyond_the_substep_bound_is_refused_naming_it():
+    # 1e6 m/s over 1 ms: 1e3 m of travel in substeps of 0.05 D = 5e-4 m, 2e6 substeps (more than
+    # MAX_SUBSTEPS); 1e300 m/s took substeps of 5e-304 s without end
+    model = row()
+    inputs = loads(model, u=1e6)
+    with returns(), pytest.raises(ValueError, match="substeps"):
+        model.advance(0.0, touching(model), inputs, 1e-3)
+
+
+def test_limiting_case_group_changes_beyond_the_substep_bound_are_refused(monkeypatch):
+    # the gap of the hand calculation above closes within the step, which ends the first
+    # substep there: a second one is needed, and one is allowed here
+    monkeypatch.setattr(ball_row, "MAX_SUBSTEPS", 1)
+    model = row()
+    inputs = loads(model)
+    gap = 1e-7
+    state = touching(model) + [-gap / 2, gap / 2]
+    eps1, eps2 = model.row(state, inputs).epsilon
+    t_close = gap / ((eps1 - eps2) * inputs["u"] / 2)
+    with pytest.raises(ValueError, match="groups change too often"):
+        model.advance(0.0, state, inputs, 1.5 * t_close)
+    monkeypatch.undo()  # allowed two, the same step passes the gap's closing
+    assert abs(model.gaps(model.advance(0.0, state, inputs, 1.5 * t_close))[0]) < 1e-3 * gap

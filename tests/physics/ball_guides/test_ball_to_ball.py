@@ -124,3 +124,12 @@ def test_two_point_contact_is_refused_naming_the_contact():
         bb.analytical(case(2.0, -1.2))
     with pytest.raises(ValueError, match="contact BR"):
         bb.numerical(case(3.0, -0.9))
+
+
+def test_limiting_case_contact_loads_beyond_any_motion_are_refused_not_answered():
+    # 1e300 N per contact: the residual is NaN, which passed the convergence check; the
+    # group's velocity came back as pure rolling (v / 2) after the continuation's ten steps
+    angles = bb.contact_angles(TABLE_1, np.radians([-2.0, 2.0, 0.0, 0.0]))
+    ball = bb.Ball(angles, np.full(4, 1e300))
+    with pytest.raises(ValueError, match="no quasi-static ball motion"):
+        bb.solve_group(TABLE_1, [ball, ball])

@@ -138,3 +138,12 @@ def test_feed_motion_moves_the_balls_by_half_the_travel_hand_calculation():
 def test_bad_carriage_input_is_refused_naming_it(make, name):
     with pytest.raises(ValueError, match=name):
         make()
+
+
+@pytest.mark.parametrize("load, message", [
+    ([0.0, float("nan"), 0.0, 0.0, 0.0], "load"),  # returned q = NaN before: NaN passed the check
+    ([0.0, 1e300, 0.0, 0.0, 0.0], "more than the balls can carry"),  # lifts every lower ball
+])
+def test_limiting_case_a_load_without_equilibrium_is_refused_naming_it(load, message):
+    with pytest.raises(ValueError, match=message):
+        hertz_balls().equilibrium(load)

@@ -184,3 +184,10 @@ def test_bad_fmu_parameters_are_refused_naming_them():
                         ("conformity", 0.4)):
         with pytest.raises(ValueError, match=name):
             fu.from_parameters(**{**base, name: value})
+
+
+@pytest.mark.parametrize("angle_change", [True, False])
+def test_limiting_case_a_load_beyond_the_balls_stops_the_equilibrium_naming_it(angle_change):
+    # 1e300 N: the Hertz loads overflow; the direct solve and the load steps are bounded
+    with pytest.raises(ValueError, match=r"no static equilibrium.*1e\+300"):
+        unit(angle_change).equilibrium([0.0, -1e300, 0.0, 0.0, 0.0])

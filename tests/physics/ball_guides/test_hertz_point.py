@@ -75,3 +75,10 @@ def test_bad_geometry_is_refused_naming_the_field(kwargs, name):
         hp.BallGroove(**kwargs)
     with pytest.raises(ValueError, match="method"):
         hp.ellipse(hp.BallGroove(D, 0.52), "approximate")
+
+
+def test_limiting_case_a_conformity_next_to_a_half_stops_the_ellipse_solve_naming_it():
+    # f -> 1/2: the groove's radius nears the ball's, F -> 1 and kappa -> infinity, beyond the
+    # bracket [1, 1e4] of the exact solve: a named error instead of SciPy's bare one
+    with pytest.raises(ValueError, match="ellipticity.*conformity 0.5"):
+        hp.ellipse(hp.BallGroove(0.01, 0.5 + 1e-10))

@@ -8,6 +8,7 @@ import pytest
 from guideway_fmu.physics.roller_guide import carriage, film
 from guideway_fmu.physics.roller_guide import four_rows as gw
 from guideway_fmu.physics.roller_guide.roller_law import contact_force
+from support import returns
 
 # Soleimanian et al. (2020) Table 2, INA RUE45-E, with its 9200 N shared by all 80 rollers (the
 # light `carriage` reading, whose rows unload within a few micrometres; the default shares it per
@@ -265,3 +266,23 @@ def test_row_kernel_film_rates_match_array_functions(u):
         expected = gw.film_rates(g, y, hu, hl, u)
         assert kernel.film_rates(y, hu, hl, u) == pytest.approx(
             (float(expected[0]), float(expected[1])), rel=1e-12, abs=1e-30)
+
+
+@pytest.mark.parametrize("model", ["extrapolated", "pan_hamrock"])
+@pytest.mark.parametrize("y, approach", [(1e300, r"7\.07e\+299"), (-1e300, r"7\.07e\+299")])
+def test_limiting_case_a_displacement_no_load_can_follow_stops_the_steady_solve_naming_it(
+        model, y, approach):
+    # |y| = 1e300 m: the row pressed by y sin(45 deg) = 7.07e299 m would carry
+    # k (7.07e299)^(10/9) N, beyond the largest double, so ln F has no bracket; its widening
+    # looped without end (ContactEHL hung in Initialization Mode) and now stops at its bound
+    g = gw.Guideway(contact=film.LineContact(model=model))
+    with returns(), pytest.raises(ValueError, match=rf"steady roller load.*{approach} m"):
+        gw.quasi_static_state(g, y, SPEED)
+
+
+@pytest.mark.parametrize("lubricated, u", LUBRICATION)
+def test_limiting_case_a_load_no_displacement_can_carry_stops_static_displacement_naming_it(
+        lubricated, u):
+    # 1e300 N needs a displacement whose roller loads overflow: the bracket's doubling is bounded
+    with returns(), pytest.raises(ValueError, match=r"static displacement.*1e\+300 N"):
+        gw.static_displacement(gw.Guideway(), 1e300, u, lubricated)

@@ -8,6 +8,7 @@ from scipy.integrate import quad
 
 from guideway_fmu.physics.wear import creep, fractal, raceway_wear
 from guideway_fmu.physics.ball_guides import hertz_point
+from support import returns
 
 STEEL = dict(e_star=1.143e11, yield_strength=518.4e6, hardness=2.8 * 518.4e6)
 
@@ -266,3 +267,21 @@ def test_row_wear_rate_is_eqs_54_to_58_by_hand(lg20):
     assert c.wear_rate == pytest.approx(12 * 5e-4 * v0 * abs(c.creep.creep_along)
                                         / (2 * strip * c.across), rel=1e-12)
     assert c.pressure == pytest.approx(140.0 / (math.pi * c.along * c.across))  # eq. 21
+
+
+def test_limiting_case_a_load_beyond_the_balls_stops_the_slider_solve_naming_it(lg20):
+    # 1e300 N: the Hertz loads of the bracket's ends overflow, no sign change is left
+    with pytest.raises(ValueError, match=r"sinking.*1e\+300 N"):
+        lg20.settle(1e300, 1e-6, 1e-6)
+
+
+@pytest.mark.parametrize("run", [
+    lambda g: g.advance(2000.0, (0.0, 0.0), 1e300),
+    lambda g: raceway_wear.simulate(g, 2000.0, 1e300, 3),
+], ids=["advance", "simulate"])
+def test_limiting_case_a_running_distance_beyond_any_wear_stops_the_integration_naming_it(
+        lg20, run):
+    # past the preload's loss the upper rows wear on at a rate that grows with their depth
+    # (7e6 m deep after 1e20 m): over 1e300 m the integration took steps without end
+    with returns(), pytest.raises(RuntimeError, match=r"1e\+300 m under 2000 N"):
+        run(lg20)

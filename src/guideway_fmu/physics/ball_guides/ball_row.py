@@ -36,7 +36,7 @@ import numpy as np
 
 from . import ball_to_ball as b2b
 from .. import checks
-from ..dynamics import ContinuousModel, rk4_step
+from ..dynamics import MAX_SUBSTEPS, ContinuousModel, rk4_step, substeps
 from ..dynamics import regularised_sign
 
 #: a gap at or below this [m] is closed (the reference integrator may overshoot 0 by a little)
@@ -158,12 +158,19 @@ class BallRow(ContinuousModel):
 
     def advance(self, t: float, state, inputs: dict, h: float) -> np.ndarray:
         """The state after ``h`` [s] with the inputs held: RK4 substeps of at most
-        TRAVEL_STEP of travel, each ending where the groups change if they do within it."""
+        TRAVEL_STEP of travel, each ending where the groups change if they do within it.
+        Raises ValueError when the travel or the group changes need more than MAX_SUBSTEPS."""
         state = np.asarray(state, dtype=float)
         travel = TRAVEL_STEP * min(self.diameter, self.wavelength)
-        longest = h / max(1, int(np.ceil(h * abs(inputs["u"]) / travel)))
-        done = 0.0
+        what = "the balls' travel (TRAVEL_STEP of a diameter or wavelength each)"
+        longest = h / substeps(h * abs(inputs["u"]) / travel, what)
+        done, taken = 0.0, 0
         while h - done > 1e-12 * h:
+            taken += 1
+            if taken > MAX_SUBSTEPS:
+                raise ValueError(f"the step of {h:g} s at u = {inputs['u']:g} m/s needs more "
+                                 f"than {MAX_SUBSTEPS} substeps: the balls' groups change too "
+                                 f"often within it")
             dt = min(longest, h - done)
             before = self._groups(state, inputs)
             trial = rk4_step(self, t + done, state, inputs, dt)

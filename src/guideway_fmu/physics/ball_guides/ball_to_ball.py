@@ -184,7 +184,7 @@ def contact_loads(bearing: Bearing, angles, side: float, normal: float) -> np.nd
     groove = np.linalg.solve(n[[0, 1]] / 2, reach)  # ball halfway: BL-TR and BR-TL equal
     found = root(residual, np.concatenate([groove / 2, groove]), method="hybr", tol=1e-14)
     loads = k * np.maximum(approaches(found.x), 0.0) ** 1.5
-    if np.max(np.abs(residual(found.x))) > 1e-9:
+    if not np.max(np.abs(residual(found.x))) <= 1e-9:  # NaN: not converged either
         raise ValueError(f"no four-point contact equilibrium under N_x = {side:g} N, "
                          f"N_y = {normal:g} N")
     slack = [name for name, f in zip(CONTACTS, loads) if f < 1e-3 * normal]
@@ -292,10 +292,13 @@ def solve_group(bearing: Bearing, balls: list[Ball], start: GroupMotion | None =
         z0 = np.concatenate([[start.velocity / half - 1], (start.spins / roll).ravel(),
                              start.contact_forces / force_scale])
     found = root(residual, z0, method="hybr", tol=1e-13)
-    if np.max(np.abs(residual(found.x))) > 1e-8:
+    error = np.max(np.abs(residual(found.x)))
+    if not error <= 1e-8:  # NaN: not converged either
         if _depth > 0 or start is not None:
-            raise ValueError(f"no quasi-static ball motion found ({found.message}; residual "
-                             f"{np.max(np.abs(residual(found.x))):.2g})")
+            loads = ", ".join(f"{b.loads.max():.3g}" for b in balls)
+            raise ValueError(f"no quasi-static ball motion found for the balls whose largest "
+                             f"contact loads are {loads} N ({found.message}; residual "
+                             f"{error:.2g})")
         # continuation from pure rolling: the deviations and the load asymmetry grow in steps
         motion = None
         for fraction in np.linspace(0.1, 1.0, 10):

@@ -188,7 +188,7 @@ class HertzBalls:
         direction of two rows (no ball resists it) is held at 0: the displacement is sought in
         the complement of the unloaded K's null space. ValueError if the load drives that
         direction, or if the balls cannot carry it."""
-        f = np.asarray(external, dtype=float)
+        f = checks.finite("load", external)
         if self.preload == 0.0:
             raise ValueError("preload must be > 0 for the start in static equilibrium (unpreloaded "
                              "balls have no stiffness at rest)")
@@ -210,7 +210,7 @@ class HertzBalls:
         start = np.linalg.solve(rest, basis.T @ f)  # the linear answer
         found = root(residual, start, jac=jacobian, method="hybr")
         # judged by the residual: at round-off hybr may report slow progress on a solution
-        if np.max(np.abs(residual(found.x))) > 1e-9 * scale:
+        if not np.max(np.abs(residual(found.x))) <= 1e-9 * scale:  # NaN: not converged either
             raise ValueError(f"no static equilibrium under the load {f.tolist()} (F_y, F_z, M_x, "
                              f"M_y, M_z): more than the balls can carry")
         return basis @ found.x

@@ -207,7 +207,7 @@ class FeedUnit:
             q = np.zeros(5)
             for fraction in np.arange(1, steps + 1) / steps:
                 q, error = self._solve(fraction * load, q)
-        if error > 1e-9 * scale:
+        if not error <= 1e-9 * scale:  # NaN: not converged either
             raise ValueError(f"no static equilibrium found under the load {load.tolist()} "
                              f"(F_y, F_z, M_x, M_y, M_z): force balance off by {error:.3g}")
         approach, normal, _ = self.contact(q)

@@ -30,11 +30,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
 from .. import checks
 from ..papers import wu2012
+from ..roots import bracketed_root
 
 METHODS = ("exact", "hamrock-brewe")
 STEEL = (wu2012.YOUNGS_MODULUS, wu2012.POISSON_RATIO)  # Young's modulus [Pa], Poisson's ratio [-]
@@ -106,7 +106,9 @@ def ellipse(contact: BallGroove, method: str = "exact") -> Ellipse:
         e, k = ellipe(m), ellipk(m)
         return ((kappa**2 + 1.0) * e - 2.0 * k) / ((kappa**2 - 1.0) * e) - target
 
-    kappa = brentq(mismatch, 1.0 + 1e-9, 1e4, xtol=1e-14, rtol=1e-14)
+    kappa = bracketed_root(mismatch, 1.0 + 1e-9, 1e4,
+                           f"ellipticity kappa of the contact of conformity {contact.conformity!r} "
+                           f"(curvature difference {target:.6g})", xtol=1e-14, rtol=1e-14)
     m = 1.0 - 1.0 / kappa**2
     return Ellipse(kappa, float(ellipe(m)), float(ellipk(m)))
 

@@ -29,10 +29,10 @@ from dataclasses import dataclass, field
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .. import checks
 from ..papers import soleimanian2020 as paper
+from ..roots import bracketed_root
 from .film import (S_MAX, S_MIN, SQUEEZE_GAIN, SQUEEZE_WEIGHT, LineContact, film_law, film_rate,
                    speed_exponent, squeeze_factor, steady_film, unsqueezed_film)
 from .roller_law import (EXPONENT, MICRON, OpposedRows, approach_for_load, contact_force,
@@ -112,6 +112,8 @@ def _solve_steady_load(g: Guideway, delta_geom, c, m, rtol=1e-12, max_iter=200):
     bisection within a bracket widened by e^8 until it holds the root, converged when each
     residual is below ``rtol`` of its scale |delta_geom| + C F^-m. (scipy's elementwise
     bracketing solver does the same at about 3 ms a call, too slow for a contact FMU.)
+    Raises ValueError naming the approaches whose load is no double (the bracket then grows
+    past MAX_WIDENINGS) and RuntimeError naming those not converged within ``max_iter`` steps.
     """
     d = np.asarray(delta_geom, dtype=float)
     c = np.broadcast_to(np.asarray(c, dtype=float), d.shape)
@@ -123,19 +125,37 @@ def _solve_steady_load(g: Guideway, delta_geom, c, m, rtol=1e-12, max_iter=200):
     dry = c == 0.0  # no entrainment (u = 0): no film
     c = np.where(dry, 1.0, c)
     q = np.log(contact_force(np.maximum(d, 0.0) + c, g.k))  # the gap's load, a film added
-    lo, hi = q - 8.0, q + 8.0
-    while np.any(below := residual(lo)[0] > 0.0):
-        lo = np.where(below, lo - 8.0, lo)
-    while np.any(above := residual(hi)[0] < 0.0):
-        hi = np.where(above, hi + 8.0, hi)
+    lo, hi = _widened(residual, q - 8.0, -8.0, d), _widened(residual, q + 8.0, 8.0, d)
     for _ in range(max_iter):
         val, slope, scale = residual(q)
-        if np.all(np.abs(val) <= rtol * scale):
+        if np.all(converged := np.abs(val) <= rtol * scale):
             return np.where(dry, contact_force(d, g.k), np.exp(q))
         lo, hi = np.where(val < 0.0, q, lo), np.where(val > 0.0, q, hi)
         step = q - val / slope
         q = np.where((step > lo) & (step < hi), step, 0.5 * (lo + hi))
-    raise RuntimeError("quasi-static film/load equilibrium did not converge")
+    raise RuntimeError(f"steady roller load: Newton's method did not converge within {max_iter} "
+                       f"steps for the geometric approach {_listed(d[~converged])} m")
+
+
+#: widenings of a bracket end of ln F by 8: from any finite start, 200 of them pass the whole
+#: range of doubles (ln F from -745 to 710), so a bracket still without the root has none
+MAX_WIDENINGS = 200
+
+
+def _widened(residual, end, by: float, d):
+    """The bracket ``end`` of ln F moved by ``by`` where the residual has not yet changed sign
+    there (below the root for by < 0, above it for by > 0), at most MAX_WIDENINGS times."""
+    for _ in range(MAX_WIDENINGS):
+        short = residual(end)[0] * by < 0.0  # the residual's sign at the end is not yet by's
+        if not np.any(short):
+            return end
+        end = np.where(short, end + by, end)
+    raise ValueError(f"steady roller load: no roller load [N] balances the geometric approach "
+                     f"{_listed(d[short])} m (its elastic load exceeds the largest double)")
+
+
+def _listed(values) -> str:
+    return ", ".join(f"{v:.3g}" for v in np.ravel(values))
 
 
 def quasi_static_state(g: Guideway, y, u=0.0, lubricated: bool = True):
@@ -178,17 +198,30 @@ def static_displacement(g: Guideway, load: float, u: float = 0.0,
                         lubricated: bool = True) -> float:
     """y [m] at which the rows carry the vertical load [N] (positive along y) in the steady state
     of :func:`quasi_static_state` at the feed velocity u [m/s]: a body at rest in static
-    equilibrium, its films steady."""
+    equilibrium, its films steady. The bracket's ends are tried at 2^0 ... 2^63 times the
+    preload's reach (MAX_DOUBLINGS); a load no displacement within them carries is refused
+    (ValueError naming it)."""
     def excess(y):
         return float(net_force(g, *quasi_static_state(g, y, u, lubricated)[:2])) - load
 
+    what = f"static displacement under {load:.6g} N at u = {u:.6g} m/s"
     reach = g.delta0 / np.sin(g.contact_angle)
-    while excess(reach) < 0.0:
-        reach *= 2.0
-    low = -reach
-    while excess(low) > 0.0:
-        low *= 2.0
-    return float(brentq(excess, low, reach, xtol=1e-18, rtol=1e-14))
+    high = _doubled(excess, reach, 1.0, what)
+    low = _doubled(excess, -reach, -1.0, what)
+    return bracketed_root(excess, low, high, what, xtol=1e-18, rtol=1e-14)
+
+
+MAX_DOUBLINGS = 64  # ends tried on each side of the static displacement's bracket
+
+
+def _doubled(excess, end: float, sign: float, what: str) -> float:
+    """``end`` [m] doubled until the excess load there has the ``sign`` of the bracket's side
+    (> 0 above the root, < 0 below it); at most MAX_DOUBLINGS ends are tried."""
+    for _ in range(MAX_DOUBLINGS):
+        if not sign * excess(end) < 0.0:
+            return end
+        end *= 2.0
+    raise ValueError(f"{what}: no displacement within {abs(end) / 2.0:.3g} m carries the load")
 
 
 def film_rates(g: Guideway, y, h_upper, h_lower, u):

@@ -39,11 +39,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 from scipy.special import gamma as gamma_function
 
 from .. import checks
 from ..papers import zhang_wang_jiang as paper
+from ..roots import bracketed_root
 
 
 def wm_profile(x, dimension: float, scale: float, lowest: float, highest: float,
@@ -177,8 +177,10 @@ class FractalSurface:
     def full_contact(self) -> float:
         """A_L [m^2] at which the real area S reaches the patch's nominal area."""
         top = self.patch_area * max(1.0, (3 - self.dimension) / (self.dimension - 1))
-        return float(brentq(lambda a: self.contact(a)[1] - self.patch_area,
-                            self.critical_area * 1e-12, top, xtol=top * 1e-14, rtol=1e-12))
+        return bracketed_root(lambda a: self.contact(a)[1] - self.patch_area,
+                              self.critical_area * 1e-12, top,
+                              f"largest asperity area of full contact (patch {self.patch_area:.6g} "
+                              f"m^2)", xtol=top * 1e-14, rtol=1e-12)
 
     def carried(self, largest):
         """Mean pressure [Pa] the patch carries at A_L [m^2]: sigma_s on the free area plus the
@@ -198,8 +200,9 @@ class FractalSurface:
         if up.size == 0:
             return self.full_contact
         i = int(up[0])
-        return float(brentq(lambda a: self.carried(a) - p, grid[i], grid[i + 1],
-                            xtol=grid[i] * 1e-13, rtol=1e-12))
+        return bracketed_root(lambda a: self.carried(a) - p, grid[i], grid[i + 1],
+                              f"largest asperity area under the mean pressure {p:.6g} Pa",
+                              xtol=grid[i] * 1e-13, rtol=1e-12)
 
     def wear_per_length(self, slip_area: float, pressure: float) -> float:
         """V_0 [m^2]: volume worn per metre of sliding by the slip area S_s [m^2] under the mean

@@ -40,12 +40,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from .. import checks
 from . import creep, fractal
 from ..ball_guides import hertz_point
 from ..papers import zhang_wang_jiang as paper
+from ..roots import bracketed_root
 
 #: ball loads of the rate table: geometric from the load where the Hertz mean pressure reaches
 #: the yield strength (no wear below it) up to this multiple of it
@@ -53,6 +53,10 @@ RATE_TABLE_SPAN = 1e4
 RATE_TABLE_POINTS = 800
 #: the distance integration's relative tolerance and absolute one in metres of wear
 RTOL, ATOL = 1e-8, 1e-15
+#: evaluations of the wear rate one distance integration may take: the paper's runs take up to
+#: about 1200 (1e10 m under 500 N); past the preload's loss the upper rows' wear accelerates
+#: without end
+MAX_RATE_EVALUATIONS = 5_000
 
 
 @dataclass(frozen=True)
@@ -196,7 +200,9 @@ class Guide:
                                 - hertz_point.load(k, lower - z * c)) - f
 
         reach = abs(upper) + abs(lower) + (abs(f) / (2 * n * c * k)) ** (2 / 3)
-        z = brentq(balance, -reach / c, reach / c, xtol=1e-18, rtol=1e-13)
+        z = bracketed_root(balance, -reach / c, reach / c,
+                           f"the slider's sinking under {f:.6g} N (interferences {upper:.6g}, "
+                           f"{lower:.6g} m)", xtol=1e-18, rtol=1e-13)
         return float(z), float(hertz_point.load(k, upper + z * c)), float(
             hertz_point.load(k, lower - z * c))
 
@@ -229,11 +235,29 @@ class Guide:
         wear = np.asarray(wear, dtype=float)
         if d == 0.0:
             return wear
-        sol = solve_ivp(lambda s, h: self.rates(load, h), (0.0, d), wear, rtol=RTOL,
-                        atol=ATOL)
+        return self.integrate(load, d, wear).y[:, -1]
+
+    def integrate(self, load: float, distance: float, wear, **options):
+        """SciPy's solution of (h_u, h_l) [m] from ``wear`` over ``distance`` [m] > 0 under the
+        load F [N] held (``options``: solve_ivp's t_eval, events, dense_output). Raises
+        RuntimeError naming the distance and the load when it fails or needs more than
+        MAX_RATE_EVALUATIONS evaluations of the rates."""
+        what = f"wear integration over {distance:g} m under {load:g} N"
+        evaluations = 0
+
+        def rates(s, h):
+            nonlocal evaluations
+            evaluations += 1
+            if evaluations > MAX_RATE_EVALUATIONS:
+                raise RuntimeError(f"{what}: more than {MAX_RATE_EVALUATIONS} evaluations of "
+                                   f"the wear rate (the wear keeps accelerating): shorten the "
+                                   f"distance or lower the load")
+            return self.rates(load, h)
+
+        sol = solve_ivp(rates, (0.0, distance), wear, rtol=RTOL, atol=ATOL, **options)
         if not sol.success:
-            raise RuntimeError(f"wear integration over {d:g} m failed: {sol.message}")
-        return sol.y[:, -1]
+            raise RuntimeError(f"{what} failed: {sol.message}")
+        return sol
 
 
 @dataclass(frozen=True)
@@ -259,10 +283,7 @@ def simulate(guide: Guide, load: float, distance: float, points: int = 101) -> W
 
     lost.terminal, lost.direction = False, -1
     grid = np.linspace(0.0, total, points)
-    sol = solve_ivp(lambda s, h: guide.rates(load, h), (0.0, total), [0.0, 0.0], t_eval=grid,
-                    events=lost, rtol=RTOL, atol=ATOL, dense_output=True)
-    if not sol.success:
-        raise RuntimeError(f"wear integration over {total:g} m failed: {sol.message}")
+    sol = guide.integrate(load, total, [0.0, 0.0], t_eval=grid, events=lost, dense_output=True)
     rows = [guide.state(load, sol.y[:, i]) for i in range(grid.size)]
     columns = {key: np.array([row[key] for row in rows]) for key in rows[0]}
     at = sol.t_events[0]

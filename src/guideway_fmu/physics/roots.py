@@ -1,0 +1,31 @@
+"""Scalar root finding with a bound and a named failure, shared by the physics' solves.
+
+:func:`bracketed_root` is SciPy's Brent method on a bracket the caller found, limited to
+MAX_ITERATIONS; where it cannot answer it raises an error that says what was being solved for
+and at which input, which a component passes on to its FMU log unchanged (an FMU must never
+compute without end inside one FMI call, nor report a solver's bare message).
+"""
+from __future__ import annotations
+
+import math
+
+from scipy.optimize import brentq
+
+MAX_ITERATIONS = 100  # Brent iterations of one root (SciPy's default)
+
+
+def bracketed_root(f, low: float, high: float, what: str, **options) -> float:
+    """The root of ``f`` in [low, high] (``options``: brentq's xtol, rtol). Raises ValueError
+    naming ``what`` (the quantity and the input it was solved at) when f does not change sign
+    over the bracket or is not a number at an end, RuntimeError when Brent's method does not
+    converge within MAX_ITERATIONS."""
+    f_low, f_high = f(low), f(high)
+    if not (f_low <= 0.0 <= f_high or f_high <= 0.0 <= f_low):  # no sign change, or NaN
+        raise ValueError(f"{what}: no root between {low:.6g} and {high:.6g} (the residual is "
+                         f"{f_low:.3g} and {f_high:.3g} there)")
+    root, info = brentq(f, low, high, maxiter=MAX_ITERATIONS, full_output=True, disp=False,
+                        **options)
+    if not (info.converged and math.isfinite(root)):
+        raise RuntimeError(f"{what}: Brent's method did not converge within {MAX_ITERATIONS} "
+                           f"iterations between {low:.6g} and {high:.6g}")
+    return float(root)
