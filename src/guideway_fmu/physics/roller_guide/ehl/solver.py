@@ -22,6 +22,12 @@ GMRES_RTOL = 1e-4  # relative tolerance of each left-preconditioned linear solve
 GMRES_RESTART, GMRES_MAX_RESTARTS = 40, 10
 LOAD_TOLERANCE = 1e-9  # relative load-balance residual accepted at convergence
 SUBSTEP_HALVINGS = 6  # a failed time step is halved at most this often
+#: Newton limit of each step of a transient (solve_transient): a falling load opens the film
+#: faster than the inlet fills it, the inlet cavitates and the front of the cavitated stretch
+#: moves a few nodes per iteration (the exit condition frees only nodes beside pressurised
+#: ones), whatever the time step; up to 67 iterations on the default grids of the shipped
+#: lubricated scenarios' records, where 50 failed
+STEP_ITERATIONS = 200
 
 
 class EHLConvergenceError(RuntimeError):
@@ -249,7 +255,7 @@ def _history(name, values, size, default):
 def solve_transient(contact: LineContactEHL, times, loads, *, entrainment_velocities=None,
                     sliding_velocities=None, nodes: int | None = None,
                     inlet: float | None = None, outlet: float | None = None,
-                    tol: float = 1e-8, max_iterations: int = 50) -> TransientResult:
+                    tol: float = 1e-8, max_iterations: int = STEP_ITERATIONS) -> TransientResult:
     """Transient (squeeze-film) solution for the load history ``loads`` [N/m] at ``times`` [s].
 
     Velocity histories [m/s] default to the contact's constant velocities; the first
@@ -257,7 +263,8 @@ def solve_transient(contact: LineContactEHL, times, loads, *, entrainment_veloci
     steady state at times[0]; the later steps solve eqs. 15-23 with d(rho h)/dt by the
     variable-step BDF2 formula (backward Euler on the first step), on the grid and in the
     Hertz units of the first state. A step whose Newton iteration fails is split in two, with
-    the histories interpolated linearly, up to SUBSTEP_HALVINGS times. contact.load and its
+    the histories interpolated linearly, up to SUBSTEP_HALVINGS times; ``max_iterations``
+    bounds the Newton iteration of each (see STEP_ITERATIONS). contact.load and its
     velocities are replaced by the histories. Raises EHLConvergenceError naming the time of a
     step that still does not converge.
     """
