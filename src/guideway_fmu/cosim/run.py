@@ -1,5 +1,6 @@
 """One scenario run to a folder: results.csv (+ units, written as the run goes), summary.json
-and the plots."""
+and the plots: those the scenario names, else every recorded column's time history and the
+spectra of those that oscillate (plots.plot_defaults)."""
 from __future__ import annotations
 
 import json
@@ -35,7 +36,9 @@ def _write(result: master.Result, system: System, out: Path, plot: bool) -> None
             options["window"] = span / 200
         if options.get("skip", 0.0) > span / 2:  # a shortened run: keep half for the spectrum
             options["skip"] = span / 2
-        files += [p.name for p in plots.plot_all(rec, kinds, out, **options)]
+        files += [p.name for p in (plots.plot_all(rec, kinds, out, **options) if kinds else
+                                   plots.plot_defaults(rec, out, skip=options.get("skip", 0.0),
+                                                       f_max=options.get("f_max")))]
     summary = {**result.summary(), "experiment": system.experiment.__dict__,
                "scenario_file": str(system.path), "files": files}
     (out / "summary.json").write_text(json.dumps(summary, indent=2, default=str))
