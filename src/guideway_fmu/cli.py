@@ -19,6 +19,7 @@ import json
 import re
 import signal
 import sys
+import textwrap
 from dataclasses import dataclass
 from fractions import Fraction
 from importlib.metadata import PackageNotFoundError, version
@@ -160,8 +161,13 @@ def _export_ssp_arguments(p) -> None:
 
 
 def _export_ssp(args) -> int:
-    from .cosim.ssp import export_ssp
-    print(export_ssp(_load(args), args.out, bake=not args.no_bake))
+    """The package's path; a warning on stderr for a stiff loop an SSP host cannot follow."""
+    from .cosim.ssp import explicit_coupling_warning, export_ssp
+    system = _load(args)
+    print(export_ssp(system, args.out, bake=not args.no_bake))
+    warning = explicit_coupling_warning(system)
+    if warning:
+        print(textwrap.fill(warning, 100), file=sys.stderr)
     return 0
 
 
