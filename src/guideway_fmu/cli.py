@@ -59,6 +59,23 @@ def _json_flag(p) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
 
+def _progress_flag(p) -> None:
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bar (there is none either when stderr is not a terminal)")
+
+
+def _progress(args) -> bool:
+    """Whether the command shows its progress bar: on stderr when that is a terminal, unless
+    --no-progress."""
+    return not args.no_progress and sys.stderr.isatty()
+
+
+def _written(folder: Path, since: float) -> list[str]:
+    """The files under ``folder`` modified since ``since`` (time.time() at the command's start,
+    less the file system's timestamp granularity), sorted."""
+    return sorted(str(p) for p in folder.rglob("*") if p.is_file() and p.stat().st_mtime >= since)
+
+
 def _fmus_option(p, default_text: str) -> None:
     p.add_argument("--fmus", type=Path, default=None,
                    help=f"take every FMU by file name from this folder ({default_text})")
@@ -126,7 +143,7 @@ def _load(args):
 def _run_arguments(p) -> None:
     _scenario_arguments(p)
     p.add_argument("--out", type=Path, required=True, help="output folder")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _progress_flag(p)
     p.add_argument("--step-timeout", type=float, default=None, metavar="SECONDS",
                    help="end the run (exit status 124) when one FMU step takes longer than this "
                         "wall time [s]; overrides the scenario's experiment.step_timeout")
@@ -134,20 +151,29 @@ def _run_arguments(p) -> None:
 
 def _run(args) -> int:
     from .cosim.run import run
-    result = run(_load(args), args.out, progress=not args.no_progress)
-    _print_json({k: v for k, v in result.summary().items() if k != "parameters"})
+    result = run(_load(args), args.out, progress=_progress(args))
+    files = json.loads((args.out / "summary.json").read_text())["files"]
+    _print_json({**{k: v for k, v in result.summary().items() if k != "parameters"},
+                 "files": [str(args.out / name) for name in files]})
     return 0
 
 
 def _verify_arguments(p) -> None:
     _scenario_arguments(p)
     _json_flag(p)
+    _progress_flag(p)
 
 
 def _verify(args) -> int:
+    """Exit status 1 when the verdict is FAILED (the report printed all the same)."""
     from .reference.verify import format_table, verify
-    report = verify(_load(args))
+    report = verify(_load(args), progress=_progress(args))
     print(json.dumps(report, indent=2) if args.json else format_table(report))
+    if not report["passed"]:
+        print(f"guideway-fmu verify: {report['scenario']} FAILED verification against the "
+              f"monolithic reference ({report['criterion']} criterion; the report above says "
+              "where)", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -200,15 +226,18 @@ def _sweep_arguments(p) -> None:
                        help="address of a running Dask scheduler to use instead")
     p.add_argument("--resume", action="store_true",
                    help="continue the sweep in --out: skip the points already in results.csv")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _progress_flag(p)
 
 
 def _sweep(args) -> int:
     from .sweep import run, sweep_file
     spec = sweep_file.load(args.sweep, args.fmus)
     with run.dask_client(args.workers, args.scheduler) as client:
-        outcome = run.run_sweep(spec, args.out, client, args.resume, progress=not args.no_progress)
+        outcome = run.run_sweep(spec, args.out, client, args.resume, progress=_progress(args))
     _print_json(outcome.__dict__)
+    if outcome.failed:
+        raise RuntimeError(f"{outcome.failed} of the {outcome.points} points failed; their errors "
+                           f"are in {outcome.files[0]} (rerun them with 'resume')")
     return 0
 
 
@@ -218,12 +247,16 @@ def _diagnose_arguments(p) -> None:
                    help="output folder: diagnosis.json, fit.csv, report.html, plots")
     p.add_argument("--fmus", type=Path, default=None,
                    help="where to find or build the FMUs (default OUT/fmus)")
+    _progress_flag(p)
 
 
 def _diagnose(args) -> int:
+    import time
     from .diagnose.workflow import diagnose
-    diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus)
-    _print_json({k: v for k, v in diagnosis.items() if k != "candidates"})
+    since = time.time() - 1.0
+    diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus, progress=_progress(args))
+    _print_json({**{k: v for k, v in diagnosis.items() if k != "candidates"},
+                 "files": _written(args.out, since)})
     return 0
 
 
@@ -231,12 +264,13 @@ def _demo_arguments(p) -> None:
     p.add_argument("--out", type=Path, default=Path("out/demo"))
     p.add_argument("--fmus", type=Path, default=Path("fmus"))
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
+    _progress_flag(p)
 
 
 def _demo(args) -> int:
-    """The demo's short summary and where its page is."""
+    """The demo's short summary, the files it wrote and where its page is."""
     from .demo.job import run_demo
-    s = run_demo(args.out, args.fmus, args.stop)
+    s = run_demo(args.out, args.fmus, args.stop, progress=_progress(args))
     lines = [f"stiffness at y = 0: {s['stiffness_at_y0_lubricated_N_per_m']:.4g} N/m lubricated, "
              f"{s['stiffness_at_y0_dry_N_per_m']:.4g} N/m dry"]
     for name, r in s["runs"].items():
@@ -251,7 +285,8 @@ def _demo(args) -> int:
                  f"gap {d['gap_before']:.4g} -> {d['gap_after']:.4g}")
     w = s["sweep"]
     lines.append(f"sweep: {w['ok']} of {w['points']} points in {w['wall_time_s']:.1f} s")
-    lines += [f"numbers: {args.out / 'summary.json'}",
+    lines += [f"files: {len(s['files'])} in {args.out}, listed in summary.json",
+              f"numbers: {args.out / 'summary.json'}",
               f"open {(args.out / 'index.html').resolve().as_uri()}"]
     print("\n".join(lines))
     return 0
@@ -328,6 +363,7 @@ def _ehl_cycle_arguments(p) -> None:
                    help=f"RMS roughness [m] (default {ROUGHNESS:g}, Soleimanian et al. 2020, "
                         "Table 4)")
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
+    _progress_flag(p)
 
 
 _EHL_CYCLE_OPTIONS = ("instance", "feed", "times", "count", "window", "history", "floor",
@@ -335,15 +371,23 @@ _EHL_CYCLE_OPTIONS = ("instance", "feed", "times", "count", "window", "history",
 
 
 def _ehl_cycle(args) -> int:
+    """Exit status 2 when an instant could not be solved, after writing the others."""
     from .analysis import ehl as ea
     options = {k: getattr(args, k) for k in _EHL_CYCLE_OPTIONS if getattr(args, k) is not None}
     if "times" in options:
         options["times"] = ea.parse_times(options["times"])
     try:
-        instants, files = ea.ehl_cycle(args.run_dir, args.out, **options)
+        instants, files = ea.ehl_cycle(args.run_dir, args.out, progress=_progress(args),
+                                       **options)
     except FileNotFoundError as error:
         raise FileNotFoundError(f"{error} (is it the --out folder of guideway-fmu run?)") from None
     print(ea.format_cycle(instants) + "\n" + "\n".join(str(f) for f in files))
+    failed = [i.row for i in instants if i.row["status"] == "failed"]
+    if failed:
+        raise RuntimeError(
+            f"{len(failed)} of {len(instants)} instants not solved: " + ", ".join(
+                f"{r['label']} (t = {r['time']:.6g} s)" for r in failed)
+            + f"; their errors are in {files[1]}")
     return 0
 
 
@@ -394,12 +438,13 @@ def _feed_unit(args) -> int:
 def _ball_to_ball_arguments(p) -> None:
     p.add_argument("case", type=Path, help="case file (docs/ball-to-ball.md)")
     _json_flag(p)
+    _progress_flag(p)
 
 
 def _ball_to_ball(args) -> int:
     from .analysis import ball_to_ball
     case = ball_to_ball.read_case(args.case)
-    result = ball_to_ball.analyse(case, args.case)
+    result = ball_to_ball.analyse(case, args.case, progress=_progress(args))
     print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result))
     return 0
 

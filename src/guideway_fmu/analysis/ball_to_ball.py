@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..output.progress import stages
 from ..physics.ball_guides import ball_to_ball as bb
 from . import input_file
 
@@ -52,14 +53,22 @@ def read_case(path) -> bb.TwoBallCase:
                           num("load", "side_ratio", False))
 
 
-def analyse(case: bb.TwoBallCase, source="case") -> dict:
+def analyse(case: bb.TwoBallCase, source="case", progress: bool = False) -> dict:
     """``{"analytical": {...}, "numerical": {...}}`` (SI units; epsilon as fractions); errors
-    name ``source``."""
+    name ``source``. ``progress``: a bar of the steps on stderr (the friction maps take most
+    of the time)."""
     try:
-        return {"analytical": bb.analytical(case), "numerical": bb.numerical(case),
-                "hertz": {"psi": case.bearing.psi, "aspect_b_over_a": case.bearing.aspect}}
+        with stages(f"ball-to-ball {Path(source).name}", 3, progress) as begin:
+            begin(f"friction maps of the contact ellipse b/a = {case.bearing.aspect:.3g}")
+            case.bearing.maps
+            begin("analytical model")
+            analytical = bb.analytical(case)
+            begin("numerical model")
+            numerical = bb.numerical(case)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
+    return {"analytical": analytical, "numerical": numerical,
+            "hertz": {"psi": case.bearing.psi, "aspect_b_over_a": case.bearing.aspect}}
 
 
 def format_result(result: dict) -> str:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import time as clock
 from pathlib import Path
 
+from ..output.progress import stages
 from .decide import decide
 from .realise import realise
 from .report import write_report, write_vertical_report
@@ -15,23 +16,31 @@ from .run_io import load_run
 from .vertical import decide_vertical, realise_vertical
 
 
-def diagnose(run_dir, out_dir, fmu_dir=None) -> dict:
+def diagnose(run_dir, out_dir, fmu_dir=None, progress: bool = False) -> dict:
     """Diagnose the measured run in ``run_dir``; write everything into ``out_dir``.
 
-    ``fmu_dir``: where to find (or build) the FMUs, by default ``out_dir``/fmus. Returns the
-    content of diagnosis.json. Raises FileNotFoundError or ValueError (one message naming the
-    file and the row, column, section or key) for a run that cannot be used.
+    ``fmu_dir``: where to find (or build) the FMUs, by default ``out_dir``/fmus. ``progress``:
+    a bar of the steps (decide, realise, report) on stderr. Returns the content of
+    diagnosis.json. Raises FileNotFoundError or ValueError (one message naming the file and
+    the row, column, section or key) for a run that cannot be used.
     """
     started = clock.perf_counter()
     out = Path(out_dir)
     fmus = Path(fmu_dir) if fmu_dir is not None else out / "fmus"
-    run = load_run(run_dir)
-    if run.kind == "vertical_response":
-        out.mkdir(parents=True, exist_ok=True)
-        naming = decide_vertical(run, out / "model", fmus)
-        realised = realise_vertical(naming, out)
-        return write_vertical_report(out, naming, realised, clock.perf_counter() - started)
-    naming = decide(run_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    realised = realise(naming, out, fmus)
-    return write_report(out, naming, realised, clock.perf_counter() - started)
+    with stages(f"diagnose {Path(run_dir).name}", 4, progress) as begin:
+        begin("read the run")
+        run = load_run(run_dir)
+        vertical = run.kind == "vertical_response"
+        begin("fit and score the candidate effects")
+        if vertical:
+            out.mkdir(parents=True, exist_ok=True)
+            naming = decide_vertical(run, out / "model", fmus)
+        else:
+            naming = decide(run_dir)
+            out.mkdir(parents=True, exist_ok=True)
+        begin("co-simulate the named model")
+        realised = realise_vertical(naming, out) if vertical else realise(naming, out, fmus)
+        begin("write the report")
+        seconds = clock.perf_counter() - started
+        return (write_vertical_report(out, naming, realised, seconds) if vertical
+                else write_report(out, naming, realised, seconds))

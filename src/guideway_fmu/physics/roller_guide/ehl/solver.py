@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import Callable
 
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
@@ -255,7 +256,8 @@ def _history(name, values, size, default):
 def solve_transient(contact: LineContactEHL, times, loads, *, entrainment_velocities=None,
                     sliding_velocities=None, nodes: int | None = None,
                     inlet: float | None = None, outlet: float | None = None,
-                    tol: float = 1e-8, max_iterations: int = STEP_ITERATIONS) -> TransientResult:
+                    tol: float = 1e-8, max_iterations: int = STEP_ITERATIONS,
+                    progress: Callable[[float], None] | None = None) -> TransientResult:
     """Transient (squeeze-film) solution for the load history ``loads`` [N/m] at ``times`` [s].
 
     Velocity histories [m/s] default to the contact's constant velocities; the first
@@ -265,8 +267,9 @@ def solve_transient(contact: LineContactEHL, times, loads, *, entrainment_veloci
     Hertz units of the first state. A step whose Newton iteration fails is split in two, with
     the histories interpolated linearly, up to SUBSTEP_HALVINGS times; ``max_iterations``
     bounds the Newton iteration of each (see STEP_ITERATIONS). contact.load and its
-    velocities are replaced by the histories. Raises EHLConvergenceError naming the time of a
-    step that still does not converge.
+    velocities are replaced by the histories. ``progress``, if given, is called with each time
+    [s] once its state is solved (times[0] included). Raises EHLConvergenceError naming the
+    time of a step that still does not converge.
     """
     times = checks.finite("times", times)
     if times.ndim != 1 or times.size < 2 or np.any(np.diff(times) <= 0.0):
@@ -283,12 +286,15 @@ def solve_transient(contact: LineContactEHL, times, loads, *, entrainment_veloci
     eq, P, H, H00, its, lin = steady_state(at(0), nodes=nodes, inlet=inlet, outlet=outlet,
                                            tol=tol, max_iterations=max_iterations)
     steps = [_result(eq, at(0), P, H, its, lin, float(times[0]))]
+    reached = progress or (lambda time: None)
+    reached(float(times[0]))
     march = _March(eq, (P, H, H00), float(times[0]), tol, max_iterations)
     for k in range(1, times.size):
         march.advance(float(times[k]), loads[k] / loads[0], u_m[k], SUBSTEP_HALVINGS)
         steps.append(_result(eq, at(k), *march.state[:2], march.iterations, march.linear,
                              float(times[k])))
         march.iterations = march.linear = 0
+        reached(float(times[k]))
     return TransientResult(tuple(steps))
 
 
