@@ -394,12 +394,19 @@ def _ehl_cycle(args) -> int:
 def _modes_arguments(p) -> None:
     p.add_argument("carriage", type=Path, help="carriage file (docs/ball-guides.md)")
     _json_flag(p)
+    p.add_argument("--plot", type=Path, default=None, metavar="P.png",
+                   help="PNG of the mode shapes: for each mode, every ball's approach along the "
+                        "carriage, both rows, with the frequency and where its energy is")
 
 
 def _modes(args) -> int:
     from .analysis import carriage_modes
     result = carriage_modes.analyse(carriage_modes.read_carriage(args.carriage))
-    print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result))
+    if args.plot is not None:
+        from .analysis.carriage_modes_plots import plot_modes
+        result["plot"] = str(plot_modes(result, args.plot))
+    print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result)
+          + (f"\nplot: {result['plot']}" if args.plot else ""))
     return 0
 
 
@@ -438,6 +445,10 @@ def _feed_unit(args) -> int:
 def _ball_to_ball_arguments(p) -> None:
     p.add_argument("case", type=Path, help="case file (docs/ball-to-ball.md)")
     _json_flag(p)
+    p.add_argument("--plot", type=Path, default=None, metavar="P.png",
+                   help="PNG of the ball-to-ball contact force and the friction losses of both "
+                        "models against the side ratio rho (the case's deviations and load "
+                        "held, the case marked; cf. the paper's Fig. 8)")
     _progress_flag(p)
 
 
@@ -445,7 +456,12 @@ def _ball_to_ball(args) -> int:
     from .analysis import ball_to_ball
     case = ball_to_ball.read_case(args.case)
     result = ball_to_ball.analyse(case, args.case, progress=_progress(args))
-    print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result))
+    if args.plot is not None:
+        from .analysis.ball_to_ball_plots import plot_side_ratio
+        sweep = ball_to_ball.side_ratio_sweep(case, progress=_progress(args))
+        result["plot"] = str(plot_side_ratio(sweep, result, case.side_ratio, args.plot))
+    print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result)
+          + (f"\nplot: {result['plot']}" if args.plot else ""))
     return 0
 
 
