@@ -1,6 +1,6 @@
 """Helpers the tests import (``from support import ...``): files written for a test (a run
-folder among them), scripts of orchestration/ loaded as modules, the real records found through GUIDEWAY_FMU_DATA, and an FMU
-with an unsafe archive entry."""
+folder among them), scripts of orchestration/ loaded as modules, the real records found through
+GUIDEWAY_FMU_DATA, and an FMU with an unsafe archive entry."""
 from __future__ import annotations
 
 import csv

@@ -138,8 +138,8 @@ FAILING = {
     "ehl-cycle": (_standing_feed_run, ["{input}", "--out", "{tmp}/o", "--times", "2e-5,1.1e-4",
                                        "--history", "0", "--nodes", "257"],
                   ["instants not solved: A (t = 2e-05 s)"]),
-    "modes": (_edited(EXAMPLES / "wu2012_hertz_moment_2p9.toml", "[load]", "[load]\nforce_y = 10.0"),
-              ["{input}"], ["no ball resists"]),
+    "modes": (_edited(EXAMPLES / "wu2012_hertz_moment_2p9.toml", "[load]",
+                      "[load]\nforce_y = 10.0"), ["{input}"], ["no ball resists"]),
     "feed-unit": (_edited(EXAMPLES / "zhang2019_vertical_10kN.toml", "[load]", "[load]\nmass = 1"),
                   ["{input}"], ["mass"]),
     "ball-to-ball": (_edited(EXAMPLES / "lin2019_case_a.toml", "side_ratio = -0.6",
@@ -179,8 +179,8 @@ def test_the_commands_that_run_long_can_be_told_to_show_no_progress():
         assert "--no-progress" in own[name]._option_string_actions, name
 
 
-@pytest.mark.parametrize("terminal, flags, shown", [(True, [], True), (True, ["--no-progress"], False),
-                                                    (False, [], False)])
+@pytest.mark.parametrize("terminal, flags, shown", [
+    (True, [], True), (True, ["--no-progress"], False), (False, [], False)])
 def test_a_progress_bar_shows_on_a_terminal_unless_told_not_to(tmp_path, capsys, monkeypatch,
                                                                terminal, flags, shown):
     monkeypatch.setattr(sys.stderr, "isatty", lambda: terminal)

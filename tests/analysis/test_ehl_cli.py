@@ -160,7 +160,8 @@ def test_ehl_cycle_transient_through_lift_off_compares_central_films(tmp_path, c
 
 def test_ehl_cycle_steady_load_is_the_steady_solution(tmp_path):
     t = np.arange(5) * 1e-5
-    run = write_run_folder(tmp_path / "run", t, np.full(5, 400.0), np.full(5, -0.3), np.full(5, 2e-7))
+    run = write_run_folder(tmp_path / "run", t, np.full(5, 400.0), np.full(5, -0.3),
+                           np.full(5, 2e-7))
     instants, files = ea.ehl_cycle(run, tmp_path / "out", times=[4e-5], nodes=513, roughness=0.0)
     (only,) = instants
     contact = LineContactEHL(load=400 / 0.008, radius=0.0025, entrainment_velocity=0.15)
@@ -228,7 +229,8 @@ def test_ehl_cycle_bad_input_exits_2_with_a_clear_message(tmp_path, capsys, chan
         (run / "results.csv").unlink()
     elif change == "no_column":
         t = np.arange(4) * 1e-6
-        write_run_folder(run, t, t + 1, t, t, columns=["time", "Feed.u", "Contact.F_upper", "Carriage.y"])
+        write_run_folder(run, t, t + 1, t, t,
+                         columns=["time", "Feed.u", "Contact.F_upper", "Carriage.y"])
     elif change == "no_instance":
         (run / "summary.json").write_text(json.dumps({"parameters": {"Carriage": {}}}))
     elif change == "dry_contact":

@@ -132,8 +132,8 @@ def test_oscillates_tells_a_swinging_signal_from_a_constant_a_ramp_and_a_step():
 
 def test_default_plots_draw_each_instance_and_spectra_of_what_oscillates(tmp_path):
     t = np.arange(400) / FS
-    rec = Recording(t, {"Body.y": 1e-6 * np.sin(2 * np.pi * 500 * t), "Body.F": np.full(t.size, 3.0),
-                        "Drive/1.u": 0.1 * t},
+    rec = Recording(t, {"Body.y": 1e-6 * np.sin(2 * np.pi * 500 * t),
+                        "Body.F": np.full(t.size, 3.0), "Drive/1.u": 0.1 * t},
                     {"Body.y": "m", "Body.F": "N", "Drive/1.u": "m/s"})
     paths = plot_defaults(rec, tmp_path / "plots")
     assert [p.name for p in paths] == ["time_Body.png", "spectrum_Body.png", "time_Drive_1.png"]

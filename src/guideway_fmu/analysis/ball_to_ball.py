@@ -62,7 +62,7 @@ def analyse(case: bb.TwoBallCase, source="case", progress: bool = False) -> dict
     name ``source``. ``progress``: a bar of the steps on stderr (the friction maps take most
     of the time)."""
     try:
-        with stages(f"ball-to-ball {Path(source).name}", 3, progress) as begin:
+        with stages(f"ball-to-ball {Path(source).name}", total=3, enabled=progress) as begin:
             begin(f"friction maps of the contact ellipse b/a = {case.bearing.aspect:.3g}")
             case.bearing.maps
             begin("analytical model")

@@ -489,7 +489,8 @@ def format_cycle(instants: list[Instant]) -> str:
 def ehl_cycle(run_dir, out, *, instance: str = "Contact", feed: str = "Feed.u", times=None,
               count: int = 10, window: float | None = None, history: float | None = None,
               floor: float = DEFAULT_FLOOR, roughness: float = paper.ROUGHNESS,
-              nodes: int | None = None, progress: bool = False) -> tuple[list[Instant], list[Path]]:
+              nodes: int | None = None,
+              progress: bool = False) -> tuple[list[Instant], list[Path]]:
     """Read the run, choose the instants, solve them (``progress``: a bar on stderr) and write
     the outputs (see above), the instants that failed too."""
     if roughness < 0.0 or not math.isfinite(roughness):

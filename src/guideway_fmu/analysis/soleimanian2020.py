@@ -128,8 +128,8 @@ def hess_soom_friction(time):
 
 
 def rig_facts(u: float = RIG_SPEED) -> dict:
-    """k, preload approach, films and natural frequencies of Soleimanian et al. 2020's rig at y = 0, feed speed u
-    [m/s]; ValueError naming 'u' unless it is finite."""
+    """k, preload approach, films and natural frequencies of Soleimanian et al. 2020's rig at
+    y = 0, feed speed u [m/s]; ValueError naming 'u' unless it is finite."""
     checks.finite("'u'", u)
     g, body = four_rows.Guideway(), carriage.Carriage()
     state = four_rows.quasi_static_state(g, 0.0, u)

@@ -203,5 +203,6 @@ def plot_defaults(rec: Recording, out_dir, *, skip: float = 0.0,
         paths.append(plot_time(rec, names, out_dir / f"time_{stem}.png"))
         swinging = [n for n in names if oscillates(rec.time[kept], rec.columns[n][kept])]
         if swinging:
-            paths.append(plot_spectra(rec, swinging, out_dir / f"spectrum_{stem}.png", skip, f_max))
+            paths.append(plot_spectra(rec, swinging, out_dir / f"spectrum_{stem}.png", skip,
+                                      f_max))
     return paths

@@ -109,7 +109,7 @@ def run_demo(out_dir: Path, fmu_dir: Path, stop: float = 0.02, progress: bool = 
     returns the summary (also in summary.json). ``progress``: a bar of these steps on stderr."""
     if not stop > 0:
         raise ValueError(f"'stop' must be > 0 s, got {stop}")
-    with stages("demo", 6 + len(DEMO_SCENARIOS), progress) as begin:
+    with stages("demo", total=6 + len(DEMO_SCENARIOS), enabled=progress) as begin:
         return _demo(out_dir, fmu_dir, stop, begin)
 
 

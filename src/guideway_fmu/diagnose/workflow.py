@@ -27,7 +27,7 @@ def diagnose(run_dir, out_dir, fmu_dir=None, progress: bool = False) -> dict:
     started = clock.perf_counter()
     out = Path(out_dir)
     fmus = Path(fmu_dir) if fmu_dir is not None else out / "fmus"
-    with stages(f"diagnose {Path(run_dir).name}", 4, progress) as begin:
+    with stages(f"diagnose {Path(run_dir).name}", total=4, enabled=progress) as begin:
         begin("read the run")
         run = load_run(run_dir)
         vertical = run.kind == "vertical_response"

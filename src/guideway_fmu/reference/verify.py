@@ -75,7 +75,7 @@ def verify(system: System, progress: bool = False) -> dict:
     reference runs, disturbed); a system the reference cannot model is refused before the
     co-simulation runs. ``progress``: a bar of these four runs on stderr."""
     monolithic.check(system)
-    with stages(f"verify {system.name}", 4, progress) as begin:
+    with stages(f"verify {system.name}", total=4, enabled=progress) as begin:
         begin("co-simulation")
         start = time.perf_counter()
         result = master.simulate(system)
