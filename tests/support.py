@@ -1,9 +1,12 @@
-"""Helpers the tests import (``from support import ...``): files written for a test, scripts of
-orchestration/ loaded as modules, the real records found through GUIDEWAY_FMU_DATA, an FMU
-with an unsafe archive entry, and a guard against calls that never return."""
+"""Helpers the tests import (``from support import ...``): files written for a test (a run
+folder among them), scripts of orchestration/ loaded as modules, the real records found through
+GUIDEWAY_FMU_DATA, an FMU with an unsafe archive entry, and a guard against calls that never
+return."""
 from __future__ import annotations
 
+import csv
 import importlib.util
+import json
 import os
 import signal
 import stat
@@ -12,6 +15,7 @@ import zipfile
 from contextlib import contextmanager
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ORCHESTRATION = Path(__file__).resolve().parents[1] / "orchestration"
@@ -25,6 +29,34 @@ def write_file(folder: Path, text: str, name: str) -> Path:
     path = Path(folder) / name
     path.write_text(text)
     return path
+
+
+#: a lubricated contact instance's parameters in a run folder's summary.json (SI units)
+RUN_PARAMETERS = {"roller_length": 0.008, "roller_radius": 0.0025, "e_reduced": 2e11,
+                  "viscosity": 0.195, "pressure_viscosity": 2.2e-8}
+
+
+def write_run_folder(folder: Path, time, load, u, film, parameters=RUN_PARAMETERS,
+                     columns=None) -> Path:
+    """A run folder as ``guideway-fmu run`` writes one, for ehl-cycle: results.csv with the
+    columns time, Feed.u, Contact.F_upper, Contact.h_upper (or ``columns``) and summary.json
+    with the Contact instance's ``parameters``."""
+    folder.mkdir(parents=True, exist_ok=True)
+    columns = columns or ["time", "Feed.u", "Contact.F_upper", "Contact.h_upper"]
+    with (folder / "results.csv").open("w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        w.writerows(np.column_stack([time, u, load, film]).tolist())
+    return write_run_summary(folder, {"Contact": parameters})
+
+
+def write_run_summary(folder: Path, parameters: dict) -> Path:
+    """summary.json of the run in ``folder``: the instances' ``parameters``, and what its
+    results.csv holds, as a run writes it (cosim/run.py)."""
+    stored = {"rows": len((folder / "results.csv").read_text().splitlines()) - 1,
+              "bytes": (folder / "results.csv").stat().st_size}
+    (folder / "summary.json").write_text(json.dumps({"parameters": parameters, "results": stored}))
+    return folder
 
 
 def load_script(path: Path):

@@ -1,5 +1,6 @@
 import html
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -240,3 +241,66 @@ def test_exit_without_finalising_keeps_buffered_output_and_the_code():
     done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
                           timeout=60)
     assert (done.returncode, done.stdout, done.stderr) == (3, "out", "err")
+
+
+# -- what the commands print, and their exit statuses ----------------------------------------
+def test_run_of_a_scenario_without_plots_plots_every_instance_and_lists_its_files(
+        fmu_dir, tmp_path, capsys):
+    from guideway_fmu.cosim import system
+    b = system.Builder("my_rig").experiment(stop=2e-3, step=2e-6, algorithm="stabilised")
+    b.component("Carriage", fmu_dir / "VerticalDynamics.fmu", load_static=500.0)
+    b.component("Contact", fmu_dir / "ContactDryHertz.fmu")
+    b.connect("Carriage.y", "Contact.y").connect("Contact.F_contact", "Carriage.F_contact")
+    b.tangent("Contact.F_contact", "Contact.y", "Contact.K_contact", "Carriage.K_contact")
+    system.dump(b.system(), tmp_path / "my_rig.toml")
+    out = tmp_path / "out"
+    assert cli.main(["run", str(tmp_path / "my_rig.toml"), "--out", str(out)]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    written = json.loads((out / "summary.json").read_text())["files"]
+    assert printed["files"] == [str(out / name) for name in written]
+    # the carriage settles onto the rollers at its natural frequency: both oscillate
+    assert written[3:] == ["time_Carriage.png", "spectrum_Carriage.png", "time_Contact.png",
+                           "spectrum_Contact.png"]
+    assert all((out / name).is_file() for name in written)
+
+
+def test_verify_exits_1_with_one_line_when_the_verdict_is_failed(fmu_dir, capsys, monkeypatch):
+    from guideway_fmu.reference import verify
+    monkeypatch.setattr(verify, "verify", lambda system, progress: {
+        "scenario": system.name, "criterion": "pointwise", "passed": False})
+    assert cli.main(["verify", "soleimanian2020_unloaded", "--fmus", str(fmu_dir), "--json"]) == 1
+    printed = capsys.readouterr()
+    assert json.loads(printed.out)["passed"] is False  # the report, printed all the same
+    assert printed.err.startswith("guideway-fmu verify: soleimanian2020_unloaded FAILED")
+    assert printed.err.count("\n") == 1
+
+
+def test_sweep_with_failed_points_exits_2_after_its_table(tmp_path, capsys, monkeypatch):
+    import contextlib
+    from guideway_fmu.sweep import run, sweep_file
+    table = str(tmp_path / "o" / "results.csv")
+    monkeypatch.setattr(sweep_file, "load", lambda path, fmus: None)
+    monkeypatch.setattr(run, "dask_client", lambda workers, scheduler: contextlib.nullcontext())
+    monkeypatch.setattr(run, "run_sweep", lambda *args, **kwargs: run.Outcome(
+        points=9, skipped=0, ok=7, failed=2, retried=2, files=[table]))
+    assert cli.main(["sweep", str(tmp_path / "s.toml"), "--out", str(tmp_path / "o")]) == 2
+    printed = capsys.readouterr()
+    assert json.loads(printed.out)["failed"] == 2
+    assert printed.err == (f"guideway-fmu sweep: error: 2 of the 9 points failed; their errors "
+                           f"are in {table} (rerun them with --resume)\n")
+
+
+def test_diagnose_lists_the_files_it_wrote(tmp_path, capsys, monkeypatch):
+    from guideway_fmu.diagnose import workflow
+    (tmp_path / "o").mkdir()
+    (tmp_path / "o" / "old.txt").write_text("from an earlier day")
+    os.utime(tmp_path / "o" / "old.txt", (0, 0))
+
+    def diagnose(run_dir, out_dir, fmu_dir, progress):
+        (out_dir / "report.html").write_text("<html></html>")
+        return {"missing_effect": "none", "candidates": []}
+
+    monkeypatch.setattr(workflow, "diagnose", diagnose)
+    assert cli.main(["diagnose", str(tmp_path / "run"), "--out", str(tmp_path / "o")]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed == {"missing_effect": "none", "files": [str(tmp_path / "o" / "report.html")]}

@@ -20,6 +20,7 @@ import json
 import re
 import signal
 import sys
+import textwrap
 from dataclasses import dataclass
 from fractions import Fraction
 from importlib.metadata import PackageNotFoundError, version
@@ -65,6 +66,23 @@ def _existing(path: Path, what: str) -> Path:
 
 def _json_flag(p) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON")
+
+
+def _progress_flag(p) -> None:
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bar (there is none either when stderr is not a terminal)")
+
+
+def _progress(args) -> bool:
+    """Whether the command shows its progress bar: on stderr when that is a terminal, unless
+    --no-progress."""
+    return not args.no_progress and sys.stderr.isatty()
+
+
+def _written(folder: Path, since: float) -> list[str]:
+    """The files under ``folder`` modified since ``since`` (time.time() at the command's start,
+    less the file system's timestamp granularity), sorted."""
+    return sorted(str(p) for p in folder.rglob("*") if p.is_file() and p.stat().st_mtime >= since)
 
 
 def _fmus_option(p, default_text: str) -> None:
@@ -134,7 +152,7 @@ def _load(args):
 def _run_arguments(p) -> None:
     _scenario_arguments(p)
     p.add_argument("--out", type=Path, required=True, help="output folder")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _progress_flag(p)
     p.add_argument("--step-timeout", type=float, default=None, metavar="SECONDS",
                    help="end the run (exit status 124) when one FMI call (a step, the "
                         "initialisation, ...) takes longer than this wall time [s]; overrides "
@@ -144,21 +162,30 @@ def _run_arguments(p) -> None:
 def _run(args) -> int:
     scenario = _load(args)
     from .cosim.run import run
-    result = run(scenario, args.out, progress=not args.no_progress)
-    _print_json({k: v for k, v in result.summary().items() if k != "parameters"})
+    result = run(scenario, args.out, progress=_progress(args))
+    files = json.loads((args.out / "summary.json").read_text())["files"]
+    _print_json({**{k: v for k, v in result.summary().items() if k != "parameters"},
+                 "files": [str(args.out / name) for name in files]})
     return 0
 
 
 def _verify_arguments(p) -> None:
     _scenario_arguments(p)
     _json_flag(p)
+    _progress_flag(p)
 
 
 def _verify(args) -> int:
+    """Exit status 1 when the verdict is FAILED (the report printed all the same)."""
     scenario = _load(args)
     from .reference.verify import format_table, verify
-    report = verify(scenario)
+    report = verify(scenario, progress=_progress(args))
     print(json.dumps(report, indent=2) if args.json else format_table(report))
+    if not report["passed"]:
+        print(f"guideway-fmu verify: {report['scenario']} FAILED verification against the "
+              f"monolithic reference ({report['criterion']} criterion; the report above says "
+              "where)", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -172,9 +199,13 @@ def _export_ssp_arguments(p) -> None:
 
 
 def _export_ssp(args) -> int:
+    """The package's path; a warning on stderr for a stiff loop an SSP host cannot follow."""
     scenario = _load(args)
-    from .cosim.ssp import export_ssp
+    from .cosim.ssp import explicit_coupling_warning, export_ssp
     print(export_ssp(scenario, args.out, bake=not args.no_bake))
+    warning = explicit_coupling_warning(scenario)
+    if warning:
+        print(textwrap.fill(warning, 100), file=sys.stderr)
     return 0
 
 
@@ -220,7 +251,7 @@ def _sweep_arguments(p) -> None:
                        help="address of a running Dask scheduler to use instead")
     p.add_argument("--resume", action="store_true",
                    help="continue the sweep in --out: skip the points already in results.csv")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _progress_flag(p)
 
 
 def _sweep(args) -> int:
@@ -229,8 +260,11 @@ def _sweep(args) -> int:
     spec = sweep_file.load(args.sweep, args.fmus)  # a bad file is told before dask loads
     from .sweep import run
     with run.dask_client(args.workers, args.scheduler) as client:
-        outcome = run.run_sweep(spec, args.out, client, args.resume, progress=not args.no_progress)
+        outcome = run.run_sweep(spec, args.out, client, args.resume, progress=_progress(args))
     _print_json(outcome.__dict__)
+    if outcome.failed:
+        raise RuntimeError(f"{outcome.failed} of the {outcome.points} points failed; their errors "
+                           f"are in {outcome.files[0]} (rerun them with 'resume')")
     return 0
 
 
@@ -240,13 +274,17 @@ def _diagnose_arguments(p) -> None:
                    help="output folder: diagnosis.json, fit.csv, report.html, plots")
     p.add_argument("--fmus", type=Path, default=None,
                    help="where to find or build the FMUs (default: the FMU cache)")
+    _progress_flag(p)
 
 
 def _diagnose(args) -> int:
     _existing(args.run_dir, "measured-run folder (rig.toml and data.csv)")
+    import time
     from .diagnose.workflow import diagnose
-    diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus)
-    _print_json({k: v for k, v in diagnosis.items() if k != "candidates"})
+    since = time.time() - 1.0
+    diagnosis = diagnose(args.run_dir, args.out, fmu_dir=args.fmus, progress=_progress(args))
+    _print_json({**{k: v for k, v in diagnosis.items() if k != "candidates"},
+                 "files": _written(args.out, since)})
     return 0
 
 
@@ -256,12 +294,13 @@ def _demo_arguments(p) -> None:
                    help="take the FMUs from this folder, built where missing or built from other "
                         "code (default: the FMU cache)")
     p.add_argument("--stop", type=float, default=0.02, help="simulated time of each run [s]")
+    _progress_flag(p)
 
 
 def _demo(args) -> int:
-    """The demo's short summary and where its page is."""
+    """The demo's short summary, the files it wrote and where its page is."""
     from .demo.job import run_demo
-    s = run_demo(args.out, args.fmus, args.stop)
+    s = run_demo(args.out, args.fmus, args.stop, progress=_progress(args))
     lines = [f"stiffness at y = 0: {s['stiffness_at_y0_lubricated_N_per_m']:.4g} N/m lubricated, "
              f"{s['stiffness_at_y0_dry_N_per_m']:.4g} N/m dry"]
     for name, r in s["runs"].items():
@@ -276,7 +315,8 @@ def _demo(args) -> int:
                  f"gap {d['gap_before']:.4g} -> {d['gap_after']:.4g}")
     w = s["sweep"]
     lines.append(f"sweep: {w['ok']} of {w['points']} points in {w['wall_time_s']:.1f} s")
-    lines += [f"numbers: {args.out / 'summary.json'}",
+    lines += [f"files: {len(s['files'])} in {args.out}, listed in summary.json",
+              f"numbers: {args.out / 'summary.json'}",
               f"open {(args.out / 'index.html').resolve().as_uri()}"]
     print("\n".join(lines))
     return 0
@@ -353,6 +393,7 @@ def _ehl_cycle_arguments(p) -> None:
                    help=f"RMS roughness [m] (default {ROUGHNESS:g}, Soleimanian et al. 2020, "
                         "Table 4)")
     p.add_argument("--nodes", type=int, default=None, help="grid nodes (default from the film)")
+    _progress_flag(p)
 
 
 _EHL_CYCLE_OPTIONS = ("instance", "feed", "times", "count", "window", "history", "floor",
@@ -360,29 +401,44 @@ _EHL_CYCLE_OPTIONS = ("instance", "feed", "times", "count", "window", "history",
 
 
 def _ehl_cycle(args) -> int:
+    """Exit status 2 when an instant could not be solved, after writing the others."""
     _existing(args.run_dir, "run folder")
     from .analysis import ehl as ea
     options = {k: getattr(args, k) for k in _EHL_CYCLE_OPTIONS if getattr(args, k) is not None}
     if "times" in options:
         options["times"] = ea.parse_times(options["times"])
     try:
-        instants, files = ea.ehl_cycle(args.run_dir, args.out, **options)
+        instants, files = ea.ehl_cycle(args.run_dir, args.out, progress=_progress(args),
+                                       **options)
     except FileNotFoundError as error:
         raise FileNotFoundError(f"{error} (is it the --out folder of guideway-fmu run?)") from None
     print(ea.format_cycle(instants) + "\n" + "\n".join(str(f) for f in files))
+    failed = [i.row for i in instants if i.row["status"] == "failed"]
+    if failed:
+        raise RuntimeError(
+            f"{len(failed)} of {len(instants)} instants not solved: " + ", ".join(
+                f"{r['label']} (t = {r['time']:.6g} s)" for r in failed)
+            + f"; their errors are in {files[1]}")
     return 0
 
 
 def _modes_arguments(p) -> None:
     p.add_argument("carriage", type=Path, help="carriage file (docs/ball-guides.md)")
     _json_flag(p)
+    p.add_argument("--plot", type=Path, default=None, metavar="P.png",
+                   help="PNG of the mode shapes: for each mode, every ball's approach along the "
+                        "carriage, both rows, with the frequency and where its energy is")
 
 
 def _modes(args) -> int:
     _existing(args.carriage, "carriage file")
     from .analysis import carriage_modes
     result = carriage_modes.analyse(carriage_modes.read_carriage(args.carriage))
-    print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result))
+    if args.plot is not None:
+        from .analysis.carriage_modes_plots import plot_modes
+        result["plot"] = str(plot_modes(result, args.plot))
+    print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result)
+          + (f"\nplot: {result['plot']}" if args.plot else ""))
     return 0
 
 
@@ -422,14 +478,24 @@ def _feed_unit(args) -> int:
 def _ball_to_ball_arguments(p) -> None:
     p.add_argument("case", type=Path, help="case file (docs/ball-to-ball.md)")
     _json_flag(p)
+    p.add_argument("--plot", type=Path, default=None, metavar="P.png",
+                   help="PNG of the ball-to-ball contact force and the friction losses of both "
+                        "models against the side ratio rho (the case's deviations and load "
+                        "held, the case marked; cf. the paper's Fig. 8)")
+    _progress_flag(p)
 
 
 def _ball_to_ball(args) -> int:
     _existing(args.case, "ball-to-ball case file")
     from .analysis import ball_to_ball
     case = ball_to_ball.read_case(args.case)
-    result = ball_to_ball.analyse(case, args.case)
-    print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result))
+    result = ball_to_ball.analyse(case, args.case, progress=_progress(args))
+    if args.plot is not None:
+        from .analysis.ball_to_ball_plots import plot_side_ratio
+        sweep = ball_to_ball.side_ratio_sweep(case, progress=_progress(args))
+        result["plot"] = str(plot_side_ratio(sweep, result, case.side_ratio, args.plot))
+    print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result)
+          + (f"\nplot: {result['plot']}" if args.plot else ""))
     return 0
 
 

@@ -2,10 +2,13 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from guideway_fmu import examples
+from guideway_fmu.analysis import ball_to_ball
 from guideway_fmu.cli import main
 
 EXAMPLES = examples.FOLDER / "ball_guides"
@@ -53,3 +56,24 @@ def test_bad_case_file_is_refused_naming_file_and_key(tmp_path, capsys, edit, me
     assert main(["ball-to-ball", str(path)]) == 2
     err = capsys.readouterr().err
     assert str(path) in err and message in err, err
+
+
+def test_the_side_ratio_sweep_passes_through_the_case_and_plots(tmp_path, capsys):
+    plot = tmp_path / "b2b.png"
+    assert main(["ball-to-ball", str(CASE_A), "--json", "--plot", str(plot)]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["plot"] == str(plot) and plot.read_bytes()[:4] == b"\x89PNG"
+    case = ball_to_ball.read_case(CASE_A)
+    sweep = ball_to_ball.side_ratio_sweep(case, points=5)  # rho = -0.95, ..., 0.95 (tan 45 deg)
+    np.testing.assert_allclose(sweep["side_ratio"], [-0.95, -0.475, 0.0, 0.475, 0.95])
+    # without a side load both diagonals of a ball carry alike, and the bottom groove's
+    # deviations of case (a), -2 and +2 deg, cancel in eq. 22: neither ball is faster
+    assert sweep["analytical"]["contact_force"][2] == pytest.approx(0.0, abs=1e-12)
+    assert sweep["numerical"]["contact_force"][2] == pytest.approx(0.0, abs=1e-9)
+    # next to two-point contact the numerical model refuses (a contact unloads), the
+    # analytical one does not know
+    assert sweep["numerical"]["contact_force"][0] is None
+    assert sweep["analytical"]["contact_force"][0] > 0
+    at_case = ball_to_ball.side_ratio_sweep(replace(case, side_ratio=0.0), points=3)
+    assert at_case["numerical"]["groove_loss"][1] == pytest.approx(
+        ball_to_ball.analyse(replace(case, side_ratio=0.0))["numerical"]["groove_loss"], rel=1e-9)

@@ -88,3 +88,31 @@ def test_missing_file_is_named(tmp_path, capsys):
 def test_reader_and_analysis_agree_with_the_physics_directly():
     case = carriage_modes.read_carriage(EXAMPLES / "wu2012_table2_moment_0.toml")
     assert case.per_row == 9 and case.stiffness == (17.8e6,) * 9 and not np.any(case.load)
+
+
+def test_each_mode_compresses_the_balls_as_its_motion_does_and_plots(tmp_path, capsys):
+    # Geometry of eq. A3 (approach g . q): a vertical translation compresses every ball alike;
+    # roll (with the lateral shift of the rolling mode) the two rows oppositely, alike along
+    # them; pitch and yaw in proportion to the ball's position l, yaw oppositely in the rows.
+    plot = tmp_path / "modes.png"
+    assert main(["modes", str(EXAMPLES / "wu2012_table2_moment_0.toml"), "--json",
+                 "--plot", str(plot)]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["plot"] == str(plot) and plot.read_bytes()[:4] == b"\x89PNG"
+    l = np.asarray(result["ball_positions"])
+    shapes = {m["label"]: (np.asarray(m["ball_approach"]["row_1"]),
+                           np.asarray(m["ball_approach"]["row_2"])) for m in result["modes"]}
+    one, two = shapes["vertical"]
+    np.testing.assert_allclose(np.abs(one), 1.0)
+    np.testing.assert_allclose(two, one)
+    one, two = shapes["rolling"]
+    np.testing.assert_allclose(np.abs(one), 1.0)
+    np.testing.assert_allclose(two, -one)
+    for label, sign in (("pitching", 1.0), ("yawing", -1.0)):
+        one, two = shapes[label]
+        np.testing.assert_allclose(one, one[0] * l / l[0], atol=1e-9)
+        np.testing.assert_allclose(two, sign * one, atol=1e-9)
+    assert not np.any(shapes["rigid"])  # it stretches no ball
+    assert main(["modes", str(EXAMPLES / "wu2012_table2_moment_0.toml"), "--plot",
+                 str(tmp_path / "text.png")]) == 0
+    assert capsys.readouterr().out.strip().endswith(f"plot: {tmp_path / 'text.png'}")

@@ -10,11 +10,10 @@ from guideway_fmu.analysis import ehl as ea
 from guideway_fmu.cli import main
 from guideway_fmu.physics.roller_guide.ehl import (EHLConvergenceError, LineContactEHL,
                                                    pan_hamrock, solve_steady)
+from support import RUN_PARAMETERS, write_run_folder, write_run_summary
 
 CHECK_POINT = ["--W", "1e-4", "--U", "1e-11", "--G", "4500"]
 SCENARIO = scenarios.find("soleimanian2020_9000N_9000Hz")
-PARAMETERS = {"roller_length": 0.008, "roller_radius": 0.0025, "e_reduced": 2e11,
-              "viscosity": 0.195, "pressure_viscosity": 2.2e-8}
 
 
 def _json(capsys, argv):
@@ -95,30 +94,11 @@ def test_ehl_bad_input_exits_2_naming_the_option(capsys, argv, words):
 
 # --- ehl-cycle on synthetic records ----------------------------------------------------------
 
-def _write_run(folder, time, load, u, film, parameters=PARAMETERS, columns=None):
-    folder.mkdir(parents=True, exist_ok=True)
-    columns = columns or ["time", "Feed.u", "Contact.F_upper", "Contact.h_upper"]
-    with (folder / "results.csv").open("w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(columns)
-        w.writerows(np.column_stack([time, u, load, film]).tolist())
-    return _write_summary(folder, {"Contact": parameters})
-
-
-def _write_summary(folder, parameters):
-    """summary.json of the run in ``folder``: the contact's parameters, and what its results.csv
-    holds, as a run writes it (cosim/run.py)."""
-    stored = {"rows": len((folder / "results.csv").read_text().splitlines()) - 1,
-              "bytes": (folder / "results.csv").stat().st_size}
-    (folder / "summary.json").write_text(json.dumps({"parameters": parameters, "results": stored}))
-    return folder
-
-
 def _pulse_run(folder):
     """60 samples at 4 us of a load oscillating at 6.6 kHz that lifts off (0 N) part-time."""
     t = np.arange(60) * 4e-6
     load = np.maximum(0.0, 300 + 350 * np.sin(2 * np.pi * 6600 * t))
-    return _write_run(folder, t, load, np.full(t.size, 0.26), np.full(t.size, 2.4e-7))
+    return write_run_folder(folder, t, load, np.full(t.size, 0.26), np.full(t.size, 2.4e-7))
 
 
 def test_select_instants_spread_over_the_oscillation_of_the_largest_peak():
@@ -169,7 +149,7 @@ def test_ehl_cycle_transient_through_lift_off_compares_central_films(tmp_path, c
         assert r["label"] in printed
     # a heavier load thins the film (A is on the rising flank, B near the peak)
     assert rows[1]["load"] > rows[0]["load"] and rows[1]["h_c"] < rows[0]["h_c"]
-    assert doc["units"]["h_c"] == "m" and doc["contact"] == PARAMETERS
+    assert doc["units"]["h_c"] == "m" and doc["contact"] == RUN_PARAMETERS
     with (out / "instants.csv").open() as f:
         table = list(csv.DictReader(f))
     assert [r["label"] for r in table] == ["A", "B", "C"]
@@ -180,7 +160,8 @@ def test_ehl_cycle_transient_through_lift_off_compares_central_films(tmp_path, c
 
 def test_ehl_cycle_steady_load_is_the_steady_solution(tmp_path):
     t = np.arange(5) * 1e-5
-    run = _write_run(tmp_path / "run", t, np.full(5, 400.0), np.full(5, -0.3), np.full(5, 2e-7))
+    run = write_run_folder(tmp_path / "run", t, np.full(5, 400.0), np.full(5, -0.3),
+                           np.full(5, 2e-7))
     instants, files = ea.ehl_cycle(run, tmp_path / "out", times=[4e-5], nodes=513, roughness=0.0)
     (only,) = instants
     contact = LineContactEHL(load=400 / 0.008, radius=0.0025, entrainment_velocity=0.15)
@@ -203,12 +184,34 @@ def test_ehl_cycle_reports_separation_and_failures_per_instant(tmp_path, monkeyp
 
     monkeypatch.setattr(ea, "solve_transient", diverge)
     assert main(["ehl-cycle", str(run), "--out", str(tmp_path / "o"), "--times",
-                 f"{lifted},6e-5", "--history", "2e-5"]) == 0
-    out = capsys.readouterr().out
+                 f"{lifted},6e-5", "--history", "2e-5"]) == 2  # an instant was not solved
+    printed = capsys.readouterr()
+    out = printed.out
     rows = json.loads((tmp_path / "o" / "instants.json").read_text())["instants"]
     assert [r["status"] for r in rows] == ["failed", "separated"]
     assert "did not converge (test)" in rows[0]["error"] and "did not converge (test)" in out
     assert rows[1]["h_c"] is None and "roller unloaded" in out
+    assert printed.err == ("guideway-fmu ehl-cycle: error: 1 of 2 instants not solved: A (t = "
+                           f"6e-05 s); their errors are in {tmp_path / 'o' / 'instants.csv'}\n")
+
+
+def test_ehl_cycle_writes_what_it_solved_and_exits_2_naming_the_instants_it_could_not(
+        tmp_path, capsys):
+    # the feed stands still until 40 us: the history of an instant before then starts without
+    # entrainment, which has no steady film to start from
+    t = np.arange(30) * 4e-6
+    u = np.where(t < 4e-5, 0.0, 0.26)
+    run = write_run_folder(tmp_path / "run", t, np.full(t.size, 400.0), u, np.full(t.size, 2e-7))
+    out = tmp_path / "o"
+    assert main(["ehl-cycle", str(run), "--out", str(out), "--times", "2e-5,1.1e-4",
+                 "--history", "0", "--nodes", "257"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert "1 of 2 instants not solved: A (t = 2e-05 s)" in err and "B (" not in err
+    rows = json.loads((out / "instants.json").read_text())["instants"]
+    assert [r["status"] for r in rows] == ["failed", "solved"]
+    assert "entrainment_velocity must be > 0" in rows[0]["error"]
+    assert (out / "instant_B.png").is_file() and not (out / "instant_A.png").exists()
 
 
 @pytest.mark.parametrize("change, words", [
@@ -226,11 +229,13 @@ def test_ehl_cycle_bad_input_exits_2_with_a_clear_message(tmp_path, capsys, chan
         (run / "results.csv").unlink()
     elif change == "no_column":
         t = np.arange(4) * 1e-6
-        _write_run(run, t, t + 1, t, t, columns=["time", "Feed.u", "Contact.F_upper", "Carriage.y"])
+        write_run_folder(run, t, t + 1, t, t,
+                         columns=["time", "Feed.u", "Contact.F_upper", "Carriage.y"])
     elif change == "no_instance":
-        _write_summary(run, {"Carriage": {}})
+        write_run_summary(run, {"Carriage": {}})
     elif change == "dry_contact":
-        _write_summary(run, {"Contact": {k: v for k, v in PARAMETERS.items() if k != "viscosity"}})
+        write_run_summary(run, {"Contact": {k: v for k, v in RUN_PARAMETERS.items()
+                                            if k != "viscosity"}})
     elif change == "outside":
         argv += ["--times", "0.5"]
     else:

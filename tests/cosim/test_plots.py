@@ -4,7 +4,8 @@ import pytest
 
 from guideway_fmu.cosim.recording import Recording
 from guideway_fmu.numerics.spectrum import peak_indices, spectrum
-from guideway_fmu.cosim.plots import envelope, plot_all, plot_film, plot_spectra, plot_time
+from guideway_fmu.cosim.plots import (envelope, oscillates, plot_all, plot_defaults, plot_film,
+                                      plot_spectra, plot_time)
 
 FS = 20_000.0  # sampling rate [Hz]
 
@@ -116,3 +117,25 @@ def test_axis_labels_name_the_quantity_from_the_fmu_and_its_unit(fmu_dir):
     assert axis_label(rec, "Contact.F_upper").replace("\n", " ") == "load of one roller in an upper groove [N]"
     assert axis_label(rec, "Contact.h_upper", "µm").endswith("[µm]")
     assert axis_label(_recording(np.linspace(0, 1, 9)), "contact.F") == "contact.F [N]"  # no description
+
+
+def test_oscillates_tells_a_swinging_signal_from_a_constant_a_ramp_and_a_step():
+    t = np.arange(2000) / FS
+    assert oscillates(t, np.sin(2 * np.pi * 100 * t))  # 20 periods
+    assert oscillates(t, 5.0 + 3.0 * t + 1e-3 * np.sin(2 * np.pi * 100 * t))  # about a trend
+    assert not oscillates(t, np.full(t.size, 2.5))
+    assert not oscillates(t, 3.0 * t - 1.0)
+    assert not oscillates(t, np.where(t < 0.05, 0.0, 1.0))
+    assert not oscillates(t, 1.0 + 1e-12 * np.sin(2 * np.pi * 100 * t))  # round-off only
+    assert not oscillates(t, np.sin(2 * np.pi * 10 * t))  # two periods: too few crossings
+
+
+def test_default_plots_draw_each_instance_and_spectra_of_what_oscillates(tmp_path):
+    t = np.arange(400) / FS
+    rec = Recording(t, {"Body.y": 1e-6 * np.sin(2 * np.pi * 500 * t),
+                        "Body.F": np.full(t.size, 3.0), "Drive/1.u": 0.1 * t},
+                    {"Body.y": "m", "Body.F": "N", "Drive/1.u": "m/s"})
+    paths = plot_defaults(rec, tmp_path / "plots")
+    assert [p.name for p in paths] == ["time_Body.png", "spectrum_Body.png", "time_Drive_1.png"]
+    for p in paths:
+        assert p.read_bytes()[:4] == b"\x89PNG"

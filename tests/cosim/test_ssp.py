@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from fmpy.ssp.simulation import simulate_ssp  # fmpy.ssp.simulate parses sys.argv on import
 
-from guideway_fmu import scenarios
+from guideway_fmu import cli, scenarios
 from guideway_fmu.cosim import master, ssp, system
 from support import SYMLINK, with_entry  # a malicious FMU
 
@@ -373,3 +373,19 @@ def test_parameter_set_refuses_what_fmpy_would_get_wrong(lc_case, fmpy_case):
     clash = dataclasses.replace(sys_, components={**sys_.components, "R": sys_.components["Carriage"]})
     with pytest.raises(ValueError, match="Rough.rollers_per_groove: fmpy would also apply it to R"):
         ssp.parameter_set(clash)
+
+
+def test_export_ssp_warns_of_a_stiff_loop_an_ssp_host_cannot_follow(fmu_dir, tmp_path, capsys):
+    package = tmp_path / "loaded.ssp"
+    assert cli.main(["export-ssp", "soleimanian2020_9000N_4500Hz", "--fmus", str(fmu_dir),
+                     str(package)]) == 0
+    printed = capsys.readouterr()
+    assert printed.out == f"{package}\n"
+    warning = printed.err.replace("\n", " ")
+    assert warning.startswith("warning: soleimanian2020_9000N_4500Hz couples a stiff loop "
+                              "(Contact.F_contact on Contact.y)")
+    assert "docs/hosts.md" in warning and "guideway-fmu export-fmu SCENARIO OUT.fmu" in warning
+    assert "\n\n" not in printed.err  # one paragraph
+    assert cli.main(["export-ssp", "lin2019_ball_to_ball_friction", "--fmus", str(fmu_dir),
+                     str(tmp_path / "balls.ssp")]) == 0  # no tangents: nothing to warn of
+    assert capsys.readouterr().err == ""

@@ -5,10 +5,13 @@ docs/ball-to-ball.md.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from tqdm import tqdm
 
+from ..output.progress import stages
 from ..physics.ball_guides import ball_to_ball as bb
 from . import input_file
 
@@ -16,6 +19,8 @@ KEYS = {"ball": ("radius", "conformity"), "material": ("E", "nu", "friction"),
         "contact": ("nominal_angle_deg", *bb.CONTACTS), "load": ("normal", "side_ratio"),
         "motion": ("velocity",)}
 BALLS = 2
+SIDE_SPAN = 0.95  # side ratios of the sweep: within this share of the two-point limit tan(beta_0)
+SWEEP_POINTS = 39
 
 
 def _deviation(path, table: dict, key: str) -> list[float]:
@@ -52,14 +57,47 @@ def read_case(path) -> bb.TwoBallCase:
                           num("load", "side_ratio", False))
 
 
-def analyse(case: bb.TwoBallCase, source="case") -> dict:
+def analyse(case: bb.TwoBallCase, source="case", progress: bool = False) -> dict:
     """``{"analytical": {...}, "numerical": {...}}`` (SI units; epsilon as fractions); errors
-    name ``source``."""
+    name ``source``. ``progress``: a bar of the steps on stderr (the friction maps take most
+    of the time)."""
     try:
-        return {"analytical": bb.analytical(case), "numerical": bb.numerical(case),
-                "hertz": {"psi": case.bearing.psi, "aspect_b_over_a": case.bearing.aspect}}
+        with stages(f"ball-to-ball {Path(source).name}", total=3, enabled=progress) as begin:
+            begin(f"friction maps of the contact ellipse b/a = {case.bearing.aspect:.3g}")
+            case.bearing.maps
+            begin("analytical model")
+            analytical = bb.analytical(case)
+            begin("numerical model")
+            numerical = bb.numerical(case)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
+    return {"analytical": analytical, "numerical": numerical,
+            "hertz": {"psi": case.bearing.psi, "aspect_b_over_a": case.bearing.aspect}}
+
+
+def side_ratio_sweep(case: bb.TwoBallCase, points: int = SWEEP_POINTS,
+                     progress: bool = False) -> dict:
+    """Both models over the side ratio rho in [-SIDE_SPAN, SIDE_SPAN] tan(beta_0), the case's
+    deviations, normal load and speed held: ``{"side_ratio": [...], "analytical": {...},
+    "numerical": {...}}`` with the contact force [N] and the ball-to-ball loss [W] of each
+    (the numerical groove loss [W] too), None where a ball leaves four-point contact.
+    ``progress``: a bar of the points on stderr."""
+    limit = SIDE_SPAN * np.tan(case.bearing.nominal_angle)
+    ratios = np.linspace(-limit, limit, points)
+    out = {"side_ratio": ratios.tolist(),
+           "analytical": {"contact_force": [], "friction_loss": []},
+           "numerical": {"contact_force": [], "friction_loss": [], "groove_loss": []}}
+    for rho in tqdm(ratios, desc="ball-to-ball over the side ratio", unit="point",
+                    disable=not progress):
+        moved = replace(case, side_ratio=float(rho))
+        for model, solve in (("analytical", bb.analytical), ("numerical", bb.numerical)):
+            try:
+                result = solve(moved)
+            except ValueError:  # out of four-point contact: no value
+                result = {}
+            for key, values in out[model].items():
+                values.append(result.get(key))
+    return out
 
 
 def format_result(result: dict) -> str:

@@ -99,7 +99,9 @@ def read_carriage(path) -> CarriageCase:
 
 def analyse(case: CarriageCase) -> dict:
     """Modes of the carriage: ``{"modes": [...], "ball_stiffness": [...], "displacement": {...}}``,
-    modes in ascending order, rigid-body modes (frequency 0, label 'rigid') included."""
+    modes in ascending order, rigid-body modes (frequency 0, label 'rigid') included. Each mode
+    has its ``ball_approach`` per row: each ball's approach in the mode shape over the largest
+    (0 for a rigid mode, which stretches no ball)."""
     directions = bc.contact_directions(case.body, case.positions())
     if case.stiffness is not None:
         k = np.concatenate([case.stiffness, case.stiffness])
@@ -112,8 +114,13 @@ def analyse(case: CarriageCase) -> dict:
             raise ValueError(f"{case.path}: [load]: {error}") from None
         k = balls.ball_stiffness(q)
     found = bc.modes(bc.stiffness_matrix(directions, k), case.body.mass_matrix())
+    approach = directions @ found.shapes  # ball approach (row) in each mode shape (column)
+    approach = np.where(found.frequencies > 0.0,
+                        approach / np.max(np.abs(approach), axis=0, initial=1e-300), 0.0)
     rows = [{"frequency_hz": float(f), "label": found.label(i),
-             "participation": dict(zip(bc.DOF, map(float, found.participation[i])))}
+             "participation": dict(zip(bc.DOF, map(float, found.participation[i]))),
+             "ball_approach": {"row_1": approach[:case.per_row, i].tolist(),
+                               "row_2": approach[case.per_row:, i].tolist()}}
             for i, f in enumerate(found.frequencies)]
     return {"modes": rows, "ball_positions": case.positions().tolist(),
             "ball_stiffness": {"row_1": k[:case.per_row].tolist(),

@@ -59,6 +59,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
+from tqdm import tqdm
 
 from .ehl_plots import plot_distribution, plot_load_history
 from ..cosim.run import read as read_results
@@ -290,8 +291,9 @@ class Instant:
     result: EHLResult | None
 
 
-def _march(template, time, w, u_m, start, stop, floor, nodes):
-    """Transient over samples start..stop; returns its steps (index k -> steps[k - start])."""
+def _march(template, time, w, u_m, start, stop, floor, nodes, reached=None):
+    """Transient over samples start..stop; returns its steps (index k -> steps[k - start]).
+    ``reached(t)`` is called as each sample is solved."""
     part = slice(start, stop + 1)
     loads = np.maximum(w[part], floor * np.max(w[part]))
     if not u_m[start] > 0.0:
@@ -300,7 +302,8 @@ def _march(template, time, w, u_m, start, stop, floor, nodes):
     first = replace(template, load=float(loads[0]), entrainment_velocity=float(u_m[start]))
     inlet, outlet, default_nodes = solver.transient_grid(first, float(np.max(loads)))
     return solve_transient(first, time[part], loads, entrainment_velocities=u_m[part],
-                           inlet=inlet, outlet=outlet, nodes=nodes or default_nodes).steps
+                           inlet=inlet, outlet=outlet, nodes=nodes or default_nodes,
+                           progress=reached).steps
 
 
 @dataclass(frozen=True)
@@ -316,12 +319,13 @@ class _Plan:
 
 def analyse_instants(record: RunRecord, instants, *, history: float | None = None,
                      floor: float = DEFAULT_FLOOR, roughness: float = paper.ROUGHNESS,
-                     nodes: int | None = None) -> list[Instant]:
+                     nodes: int | None = None, progress: bool = False) -> list[Instant]:
     """Solve the upper-roller contact at each (label, index) of ``instants`` (see the module
     docstring). ``history`` [s] overrides the default squeeze history (0: steady);
     ``floor`` (0 < floor <= 1) is the load of separated samples as a fraction of the march's
-    largest load; ``nodes`` overrides the grid. A solution that fails is reported in its row
-    (status "failed" and the error), a roller without load as status "separated"."""
+    largest load; ``nodes`` overrides the grid; ``progress`` shows a bar of the samples solved
+    (tqdm, stderr). A solution that fails is reported in its row (status "failed" and the
+    error), a roller without load as status "separated"."""
     if history is not None and not (math.isfinite(history) and history >= 0.0):
         raise ValueError(f"'history' must be >= 0 s, got {history}")
     if not (math.isfinite(floor) and 0.0 < floor <= 1.0):
@@ -365,26 +369,39 @@ def analyse_instants(record: RunRecord, instants, *, history: float | None = Non
             for g in group:
                 rows[g.label]["error"] = str(exc)
 
+    groups = _overlapping([plan for plan in plans if not plan.steady])
+    bar = tqdm(total=sum(plan.steady for plan in plans) + sum(
+        group[-1].index - min(g.start for g in group) + 1 for group in groups),
+        unit="sample", desc="EHL at the instants", disable=not progress)
+
     def march(start: int, stop: int):
-        return _march(template, time, w, u_m, start, stop, floor, nodes)
+        return _march(template, time, w, u_m, start, stop, floor, nodes,
+                      lambda t: bar.update())
 
-    for plan in plans:
-        if plan.steady:
-            attempt([plan], lambda plan=plan: [solve_steady(plan.contact, nodes=nodes)])
-    for group in _overlapping([plan for plan in plans if not plan.steady]):
-        start = min(g.start for g in group)
-        for g in group:
-            rows[g.label]["history"] = float(time[g.index] - time[start])
+    def steady_solution(plan: _Plan):
+        result = solve_steady(plan.contact, nodes=nodes)
+        bar.update()
+        return [result]
 
-        def shared(group=group, start=start):
-            steps = march(start, group[-1].index)
-            return [steps[g.index - start] for g in group]
-
-        attempt(group, shared)
-        if len(group) > 1 and rows[group[0].label]["error"]:  # each alone, on its own history
+    with bar:
+        for plan in plans:
+            if plan.steady:
+                attempt([plan], lambda plan=plan: steady_solution(plan))
+        for group in groups:
+            start = min(g.start for g in group)
             for g in group:
-                rows[g.label].update(error=None, history=float(time[g.index] - time[g.start]))
-                attempt([g], lambda g=g: [march(g.start, g.index)[-1]])
+                rows[g.label]["history"] = float(time[g.index] - time[start])
+
+            def shared(group=group, start=start):
+                steps = march(start, group[-1].index)
+                return [steps[g.index - start] for g in group]
+
+            attempt(group, shared)
+            if len(group) > 1 and rows[group[0].label]["error"]:  # each alone, own history
+                bar.total += sum(g.index - g.start + 1 for g in group)
+                for g in group:
+                    rows[g.label].update(error=None, history=float(time[g.index] - time[g.start]))
+                    attempt([g], lambda g=g: [march(g.start, g.index)[-1]])
     out = []
     for label, row in rows.items():
         result = results.get(label)
@@ -464,8 +481,10 @@ def format_cycle(instants: list[Instant]) -> str:
 def ehl_cycle(run_dir, out, *, instance: str = "Contact", feed: str = "Feed.u", times=None,
               count: int = 10, window: float | None = None, history: float | None = None,
               floor: float = DEFAULT_FLOOR, roughness: float = paper.ROUGHNESS,
-              nodes: int | None = None) -> tuple[list[Instant], list[Path]]:
-    """Read the run, choose the instants, solve them and write the outputs (see above)."""
+              nodes: int | None = None,
+              progress: bool = False) -> tuple[list[Instant], list[Path]]:
+    """Read the run, choose the instants, solve them (``progress``: a bar on stderr) and write
+    the outputs (see above), the instants that failed too."""
     if roughness < 0.0 or not math.isfinite(roughness):
         raise ValueError(f"'roughness' must be >= 0 m, got {roughness}")
     if nodes is not None and nodes < 33:
@@ -473,7 +492,7 @@ def ehl_cycle(run_dir, out, *, instance: str = "Contact", feed: str = "Feed.u", 
     record = read_run(run_dir, instance, feed)
     chosen = select_instants(record.time, record.load, times=times, count=count, window=window)
     instants = analyse_instants(record, chosen, history=history, floor=floor,
-                                roughness=roughness, nodes=nodes)
+                                roughness=roughness, nodes=nodes, progress=progress)
     options = {"instance": instance, "feed": feed, "history": history, "floor": floor,
                "roughness": roughness, "nodes": nodes}
     return instants, write_cycle(out, record, instants, options)

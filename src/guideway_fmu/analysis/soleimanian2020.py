@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..numerics.spectrum import power_spectrum, spectrum
+from ..physics import checks
 from ..physics.papers import soleimanian2020 as paper
 from ..physics.papers.soleimanian2020 import RIG_SPEED
 from ..physics.roller_guide import carriage, four_rows, friction, greenwood_tripp
@@ -127,7 +128,9 @@ def hess_soom_friction(time):
 
 
 def rig_facts(u: float = RIG_SPEED) -> dict:
-    """k, preload approach, films and natural frequencies of Soleimanian et al. 2020's rig at y = 0, feed speed u."""
+    """k, preload approach, films and natural frequencies of Soleimanian et al. 2020's rig at
+    y = 0, feed speed u [m/s]; ValueError naming 'u' unless it is finite."""
+    checks.finite("'u'", u)
     g, body = four_rows.Guideway(), carriage.Carriage()
     state = four_rows.quasi_static_state(g, 0.0, u)
     f_u, h_u = float(state[0]), float(state[2])

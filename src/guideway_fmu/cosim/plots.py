@@ -7,6 +7,7 @@ directly, without pyplot: the caller's backend is left alone and no figure stays
 """
 from __future__ import annotations
 
+import re
 import textwrap
 from pathlib import Path
 from typing import Callable
@@ -20,6 +21,10 @@ from ..numerics.spectrum import peak_indices, spectrum, uniform_grid
 from .recording import Recording
 
 _KINDS = ("time", "spectrum", "film", "envelope")
+#: a signal oscillates, and its spectrum says something, when it crosses its straight-line
+#: trend this often over the record and swings about it by more than round-off
+MIN_CROSSINGS = 6
+ROUND_OFF = 1e-9  # swing about the trend, relative to the signal's size, below which it is noise
 
 
 def envelope(time, values, window: float) -> tuple[np.ndarray, np.ndarray]:
@@ -163,3 +168,41 @@ def plot_all(rec: Recording, plots: dict, out_dir, *, skip: float = 0.0, f_max: 
         "envelope": lambda names, path: plot_envelope(rec, names, path, window),
     }
     return [writers[kind](names, out_dir / f"{kind}.png") for kind, names in plots.items()]
+
+
+def oscillates(time, values) -> bool:
+    """Whether ``values`` [any unit] over ``time`` [s] swing about their straight-line trend
+    (MIN_CROSSINGS crossings or more, by more than ROUND_OFF of their size): the signals whose
+    spectrum means something, unlike a constant, a ramp or a step."""
+    time, values = np.asarray(time, float), np.asarray(values, float)
+    if time.size < MIN_CROSSINGS + 2 or not np.all(np.isfinite(values)):
+        return False
+    residual = values - np.polyval(np.polyfit(time - time[0], values, 1), time - time[0])
+    size = max(np.max(np.abs(values)), np.finfo(float).tiny)
+    if np.ptp(residual) <= ROUND_OFF * size:
+        return False
+    return np.count_nonzero(np.diff(np.signbit(residual))) >= MIN_CROSSINGS
+
+
+def plot_defaults(rec: Recording, out_dir, *, skip: float = 0.0,
+                  f_max: float | None = None) -> list[Path]:
+    """The plots of a run whose scenario names none, per instance ``I`` (its name with any
+    character outside letters, digits and ``_.-`` as ``_``): ``time_I.png``, the time history
+    of every column of it, and ``spectrum_I.png``, the spectra (``skip`` [s], ``f_max`` [Hz]) of
+    those that :func:`oscillates` says swing. Axis labels from the FMUs' descriptions and
+    units. Returns the paths."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    instances: dict[str, list[str]] = {}
+    for name in rec.columns:
+        instances.setdefault(name.split(".", 1)[0], []).append(name)
+    kept = rec.time - rec.time[0] >= skip
+    paths = []
+    for instance, names in instances.items():
+        stem = re.sub(r"[^A-Za-z0-9_.-]", "_", instance)
+        paths.append(plot_time(rec, names, out_dir / f"time_{stem}.png"))
+        swinging = [n for n in names if oscillates(rec.time[kept], rec.columns[n][kept])]
+        if swinging:
+            paths.append(plot_spectra(rec, swinging, out_dir / f"spectrum_{stem}.png", skip,
+                                      f_max))
+    return paths

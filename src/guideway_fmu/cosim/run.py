@@ -1,5 +1,7 @@
 """One scenario run to a folder: results.csv (+ units, written as the run goes), summary.json
-and the plots; :func:`read` takes a run folder's results back.
+and the plots: those the scenario names, else every recorded column's time history and the
+spectra of those that oscillate (plots.plot_defaults); :func:`read` takes a run folder's results
+back.
 
 summary.json is strict JSON (no NaN or Infinity: a non-finite number is written as the string
 "inf", "-inf" or "nan"), replaced whole (:func:`write_json`), and says what results.csv holds
@@ -56,7 +58,9 @@ def _write(result: master.Result, system: System, out: Path, plot: bool) -> None
             options["window"] = span / 200
         if options.get("skip", 0.0) > span / 2:  # a shortened run: keep half for the spectrum
             options["skip"] = span / 2
-        files += [p.name for p in plots.plot_all(rec, kinds, out, **options)]
+        files += [p.name for p in (plots.plot_all(rec, kinds, out, **options) if kinds else
+                                   plots.plot_defaults(rec, out, skip=options.get("skip", 0.0),
+                                                       f_max=options.get("f_max")))]
         _summary(result, system, out, files)
 
 

@@ -132,6 +132,21 @@ def export_ssp(system: System, out: str | Path, bake: bool = True) -> Path:
     return out
 
 
+def explicit_coupling_warning(system: System) -> str | None:
+    """The paragraph ``export-ssp`` prints for a system with tangents (a stiff loop our master
+    couples with the stabilised algorithm, which the package does not carry), else None."""
+    if not system.tangents:
+        return None
+    loops = ", ".join(f"{t.instance}.{t.force} on {t.instance}.{t.position}"
+                      for t in system.tangents)
+    return (f"warning: {system.name} couples a stiff loop ({loops}) that our master steps with "
+            "the stabilised coupling of its tangents, which an SSP package cannot carry. An SSP "
+            "host (libcosim, fmpy) couples the loop explicitly, each output held over the step, "
+            "and this loop does not stay stable that way: the run diverges or an FMU stops it "
+            "within milliseconds (docs/hosts.md). To run the system in another host as our "
+            "master does, export it as one FMU instead: guideway-fmu export-fmu SCENARIO OUT.fmu.")
+
+
 def packed_files(system: System, out: Path, made: str) -> dict[str, Path]:
     """The FMU files of ``system`` by file name, checked for packing them into ``out``, the
     ``made`` (package, FMU) to write: FileNotFoundError naming the file if ``out``'s folder or an

@@ -40,6 +40,7 @@ from ..cosim.fmu_instance import FmuInstance  # noqa: E402
 from ..diagnose import truth, workflow  # noqa: E402
 from ..analysis.soleimanian2020 import RIG_SPEED  # noqa: E402
 from ..sweep import run as sweep_run, sweep_file  # noqa: E402
+from ..output.progress import stages  # noqa: E402
 
 
 def stiffness_curves(fmu_dir: Path, y: np.ndarray, u: float = RIG_SPEED) -> dict[str, np.ndarray]:
@@ -104,15 +105,25 @@ def _sweep(out_dir: Path, fmu_dir: Path, stop: float) -> dict:
             "plots": [str(Path(p).relative_to(out_dir)) for p in outcome.files if p.endswith(".png")]}
 
 
-def run_demo(out_dir: Path, fmus: Path | None = None, stop: float = 0.02) -> dict:
+def run_demo(out_dir: Path, fmus: Path | None = None, stop: float = 0.02,
+             progress: bool = False) -> dict:
     """Take the FMUs from the cache (or ``fmus``, built where needed), draw the stiffness curves,
     run three paper scenarios for ``stop`` seconds each (results, plots), verify one against the
     monolithic reference, diagnose a generated measured run, sweep the example's points for
-    ``stop`` seconds each and write index.html; returns the summary (also in summary.json)."""
+    ``stop`` seconds each and write index.html; returns the summary (also in summary.json).
+    ``progress``: a bar of these steps on stderr."""
     if not stop > 0:
         raise ValueError(f"'stop' must be > 0 s, got {stop}")
+    with stages("demo", total=6 + len(DEMO_SCENARIOS), enabled=progress) as begin:
+        return _demo(out_dir, fmus, stop, begin)
+
+
+def _demo(out_dir: Path, fmus: Path | None, stop: float, begin) -> dict:
+    """The steps of :func:`run_demo`, each announced by ``begin(name)``."""
     out_dir.mkdir(parents=True, exist_ok=True)
+    begin("the FMUs (from the cache, built where missing)")
     fmu_dir = cache.folder() if fmus is None else build.ensure(fmus)
+    begin("stiffness curves through the contact FMUs")
     curves = stiffness_curves(fmu_dir, np.linspace(-5e-6, 5e-6, 101))
     np.savetxt(out_dir / "stiffness.csv", np.column_stack(list(curves.values())), delimiter=",",
                header=",".join(curves), comments="")
@@ -123,6 +134,7 @@ def run_demo(out_dir: Path, fmus: Path | None = None, stop: float = 0.02) -> dic
         "runs": {},
     }
     for name in DEMO_SCENARIOS:
+        begin(f"run {name}")
         scenario = system.load(scenarios.find(name), fmu_dir).with_changes(stop=stop)
         result = run.run(scenario, out_dir / name, progress=False)
         rec = result.recording
@@ -135,18 +147,22 @@ def run_demo(out_dir: Path, fmus: Path | None = None, stop: float = 0.02) -> dic
                                 float(rec.columns["Contact.F_upper"].max())],
             "h_upper_range_m": [float(rec.columns["Contact.h_upper"].min()),
                                 float(rec.columns["Contact.h_upper"].max())]}
+    begin(f"verify {VERIFIED}")
     report = verify.verify(system.load(scenarios.find(VERIFIED), fmu_dir).with_changes(stop=stop))
     (out_dir / "verify.json").write_text(json.dumps(report, indent=2))
     summary["verify"] = {VERIFIED: {"rms_error_Contact.F_upper": report["rms_error"]["Contact.F_upper"],
                                     "wall_time_cosim_s": report["wall_time_cosim"],
                                     "wall_time_reference_s": report["wall_time_reference"]}}
+    begin("diagnose the bundled measured run")
     example = truth.write_example(out_dir / "diagnose_example" / "run")
     diagnosis = workflow.diagnose(out_dir / "diagnose_example" / "run", out_dir / "diagnose_example",
                                   fmu_dir=fmu_dir)
     summary["diagnose"] = {"hidden_effect": example.effect,
                            **{k: diagnosis[k] for k in ("missing_effect", "gap_before", "gap_after",
                                                         "noise_floor")}}
+    begin("sweep the example's points")
     summary["sweep"] = _sweep(out_dir, fmu_dir, stop)
+    begin("write index.html")
     page.write_index(out_dir, fmus, fmu_dir, stop, summary, DEMO_SCENARIOS, VERIFIED)
     summary["files"] = sorted(str(p.relative_to(out_dir)) for p in out_dir.rglob("*") if p.is_file())
     (out_dir / "summary.json").write_text(json.dumps(summary, indent=2))

@@ -9,6 +9,7 @@ import numpy as np
 from . import criterion, monolithic, statistics
 from ..cosim import master
 from ..cosim.system import System
+from ..output.progress import stages
 
 LOAD = "Contact.F_upper"  # the judged signal where the system has it
 
@@ -68,25 +69,32 @@ def _statistics(system, time, signal, films, cosim: dict, reference: dict, distu
     return {"load_cycle_period": period, "skip": skip, "signals": judged}
 
 
-def verify(system: System) -> dict:
+def verify(system: System, progress: bool = False) -> dict:
     """Run the co-simulation and the reference on the same time grid, compare them, and judge
     the judged signal by the criterion the reference's predictability allows (two more
     reference runs, disturbed); a system the reference cannot model is refused before the
-    co-simulation runs."""
+    co-simulation runs. ``progress``: a bar of these four runs on stderr."""
     monolithic.check(system)
-    start = time.perf_counter()
-    result = master.simulate(system)
-    wall_time_cosim = time.perf_counter() - start  # s, the whole run, as the reference's
-    rec = result.recording
-    reference = monolithic.simulate(system, times=rec.time)
-    rms, peak = compare(rec.time, rec.columns, reference)
-    signal, films = judged_signals(system, rms)
-    wanted = [signal, *films]
-    disturbed = {
-        f"start offset {criterion.START_OFFSET:g}": monolithic.simulate(
-            system, times=rec.time, columns=wanted, start_offset=criterion.START_OFFSET),
-        f"rtol {reference.rtol * criterion.LOOSE_RTOL_FACTOR:g}": monolithic.simulate(
-            system, times=rec.time, columns=wanted, rtol=reference.rtol * criterion.LOOSE_RTOL_FACTOR)}
+    with stages(f"verify {system.name}", total=4, enabled=progress) as begin:
+        begin("co-simulation")
+        start = time.perf_counter()
+        result = master.simulate(system)
+        wall_time_cosim = time.perf_counter() - start  # s, the whole run, as the reference's
+        rec = result.recording
+        begin("reference")
+        reference = monolithic.simulate(system, times=rec.time)
+        rms, peak = compare(rec.time, rec.columns, reference)
+        signal, films = judged_signals(system, rms)
+        wanted = [signal, *films]
+        offset = f"start offset {criterion.START_OFFSET:g}"
+        loose = f"rtol {reference.rtol * criterion.LOOSE_RTOL_FACTOR:g}"
+        begin(f"reference, {offset}")
+        disturbed = {offset: monolithic.simulate(system, times=rec.time, columns=wanted,
+                                                 start_offset=criterion.START_OFFSET)}
+        begin(f"reference, {loose}")
+        disturbed[loose] = monolithic.simulate(
+            system, times=rec.time, columns=wanted,
+            rtol=reference.rtol * criterion.LOOSE_RTOL_FACTOR)
     chosen, spreads, reason = criterion.choose(
         reference.columns[signal], {label: d.columns[signal] for label, d in disturbed.items()})
     report = {"scenario": system.name, "algorithm": system.experiment.algorithm,
