@@ -77,7 +77,7 @@ def test_an_error_that_is_not_the_librarys_named_kind_is_not_hidden(monkeypatch)
 
 
 # -- every command says when its work failed -------------------------------------------------
-EXAMPLES = Path(__file__).resolve().parents[1] / "orchestration" / "ball_guides"
+EXAMPLES = examples.FOLDER / "ball_guides"
 
 
 def _broken_fmu_scenario(tmp_path, fmu_dir):
@@ -121,6 +121,8 @@ FAILING = {
     "build": (None, ["--out", "{tmp}", "ContactMagic"], ["ContactMagic"]),
     "host-env": (None, ["--check", "{tmp}/missing.fmu"], ["missing.fmu"]),
     "scenarios": None,  # takes no input (checked): nothing of the user's can make it fail
+    "examples": (lambda tmp_path, fmu_dir: write_file(tmp_path, "", "a_file"), ["{input}"],
+                 ["is a file, not a folder"]),
     "run": (_broken_fmu_scenario, ["{input}", "--out", "{tmp}/o"], ["cannot instantiate Carriage"]),
     "sweep": (_edited(scenarios.FOLDER / "sweeps" / "soleimanian2020_envelope_vs_frequency.toml",
                       '"Carriage.load_amplitude"', '"Carriage.no_such_parameter"'),

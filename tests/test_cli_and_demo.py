@@ -283,6 +283,7 @@ def test_sweep_with_failed_points_exits_2_after_its_table(tmp_path, capsys, monk
     monkeypatch.setattr(run, "dask_client", lambda workers, scheduler: contextlib.nullcontext())
     monkeypatch.setattr(run, "run_sweep", lambda *args, **kwargs: run.Outcome(
         points=9, skipped=0, ok=7, failed=2, retried=2, files=[table]))
+    (tmp_path / "s.toml").write_text("")  # read by the mocked loader only
     assert cli.main(["sweep", str(tmp_path / "s.toml"), "--out", str(tmp_path / "o")]) == 2
     printed = capsys.readouterr()
     assert json.loads(printed.out)["failed"] == 2
@@ -301,6 +302,7 @@ def test_diagnose_lists_the_files_it_wrote(tmp_path, capsys, monkeypatch):
         return {"missing_effect": "none", "candidates": []}
 
     monkeypatch.setattr(workflow, "diagnose", diagnose)
+    (tmp_path / "run").mkdir()  # read by the mocked workflow only
     assert cli.main(["diagnose", str(tmp_path / "run"), "--out", str(tmp_path / "o")]) == 0
     printed = json.loads(capsys.readouterr().out)
     assert printed == {"missing_effect": "none", "files": [str(tmp_path / "o" / "report.html")]}

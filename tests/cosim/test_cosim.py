@@ -340,8 +340,8 @@ def test_fmu_failure_mid_run_names_instance_time_and_log_and_keeps_the_recording
 
 
 def test_a_parameter_error_is_printed_once_before_the_masters_message(fmu_dir, tmp_path, capsys):
-    # leaving initialisation, reading the outputs and the step each reported it: three lines
-    # on stderr and three in the log the master's message carries
+    # the FMU refuses it where it meets it first, leaving initialisation (fmi2Error), and says
+    # so once on stderr and once in the log the master's message carries
     from guideway_fmu import cli
 
     path = write_file(tmp_path, '[experiment]\nstop = 1e-3\nstep = 1e-5\nalgorithm = "jacobi"\n'
@@ -352,7 +352,8 @@ def test_a_parameter_error_is_printed_once_before_the_masters_message(fmu_dir, t
     printed, message = err.split("guideway-fmu run: error: ")
     line = "Contact: Guideway.preload must be > 0, got -100.0"
     assert printed == f"ContactEHL {line}\n"
-    assert message.startswith("bad: FMU instance 'Contact' failed at t = 0 s: fmi2DoStep failed")
+    assert message.startswith("bad: FMU instance 'Contact' failed during initialisation: "
+                              "fmi2ExitInitializationMode failed with status 3 (error)")
     assert message.count(line) == 1
 
 

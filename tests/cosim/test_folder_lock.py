@@ -66,6 +66,7 @@ def test_the_lock_is_released_when_a_run_ends_or_fails(tmp_path, faulty, fault):
 
 
 def test_a_sweep_and_a_diagnosis_into_a_held_folder_are_refused_before_writing(tmp_path):
+    from guideway_fmu import examples
     from guideway_fmu.diagnose.workflow import diagnose
     from guideway_fmu.sweep.run import run_sweep
 
@@ -74,7 +75,7 @@ def test_a_sweep_and_a_diagnosis_into_a_held_folder_are_refused_before_writing(t
         with pytest.raises(FolderInUse, match=f"{out}: another run writes into this folder"):
             run_sweep(None, out, None)  # refused before it looks at the sweep or the cluster
         with pytest.raises(FolderInUse, match=f"{out}: another run writes into this folder"):
-            diagnose(tmp_path / "no_run", out)
+            diagnose(examples.FOLDER / "measured_run", out)  # read, then refused
     assert [p.name for p in out.iterdir()] == [LOCK_FILE]
 
 

@@ -237,12 +237,22 @@ def _initialises(instance: FmuInstance, inst: str, fmu: Path, experiment,
         for name, v in instance.variables.items():
             if v.causality == "output":
                 instance.get(name)
-    except FMICallException as exc:
-        failed = f"{exc}; {'; '.join(dict.fromkeys(instance.errors())) or 'it logged no error'}"
+    except FMICallException as exc:  # the FMU's own messages say why; the call's name if none
+        failed = "; ".join(_own_errors(instance)) or f"{exc}; it logged no error"
     else:
-        failed = "; ".join(dict.fromkeys(instance.errors()))
+        failed = "; ".join(_own_errors(instance))
     if failed:
         raise ValueError(f"{inst}: {fmu} refuses the instance's parameters: {failed}")
+
+
+#: how pythonfmu's wrapper logs that the slave's Python call raised: after the slave's own
+#: message, which says why, it adds nothing
+WRAPPER_LINE = "Fatal py exception encountered"
+
+
+def _own_errors(instance: FmuInstance) -> list[str]:
+    """The errors ``instance`` logged, each once, without pythonfmu's wrapper line."""
+    return [e for e in dict.fromkeys(instance.errors()) if not e.startswith(WRAPPER_LINE)]
 
 
 def parameter_set(system: System) -> ParameterSet:
