@@ -127,3 +127,26 @@ def returns(within: float = 60.0):
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0.0)
         signal.signal(signal.SIGALRM, previous)
+
+
+#: a scenario of the probe FMU `Faulty` (tests/conftest.py) alone, instance R
+PROBE_SCENARIO = """\
+name = "probe"
+
+[experiment]
+stop = {stop}
+step = {step}
+algorithm = "jacobi"
+{extra}
+[components.R]
+fmu = "{fmu}"
+parameters = {{ fault = "{fault}" }}
+"""
+
+
+def probe_scenario(folder: Path, fmu, fault: str = "none", stop: float = 0.01,
+                   step: float = 0.001, extra: str = "") -> Path:
+    """probe.toml in ``folder``: the probe FMU ``fmu`` with ``fault`` (conftest's Faulty) run
+    for ``stop`` s at steps of ``step`` s, ``extra`` lines added to [experiment]."""
+    return write_file(folder, PROBE_SCENARIO.format(fmu=fmu, fault=fault, stop=stop, step=step,
+                                                    extra=extra), "probe.toml")

@@ -64,6 +64,14 @@ def _existing(path: Path, what: str) -> Path:
     return path
 
 
+def _print_result(args, result: dict, text) -> int:
+    """Print an analysis' ``result`` as JSON with ``--json``, else as ``text(result)`` and the
+    plot it drew; exit status 0."""
+    print(json.dumps(result, indent=2) if args.json else
+          text(result) + (f"\nplot: {result['plot']}" if result.get("plot") else ""))
+    return 0
+
+
 def _json_flag(p) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
@@ -437,9 +445,7 @@ def _modes(args) -> int:
     if args.plot is not None:
         from .analysis.carriage_modes_plots import plot_modes
         result["plot"] = str(plot_modes(result, args.plot))
-    print(json.dumps(result, indent=2) if args.json else carriage_modes.format_modes(result)
-          + (f"\nplot: {result['plot']}" if args.plot else ""))
-    return 0
+    return _print_result(args, result, carriage_modes.format_modes)
 
 
 def _feed_unit_arguments(p) -> None:
@@ -463,16 +469,13 @@ def _feed_unit(args) -> int:
     case = fa.read_feed_unit(args.feed_unit)
     if args.sweep is None:
         result = fa.analyse(case)
-        print(json.dumps(result, indent=2) if args.json else fa.format_result(result))
-        return 0
+        return _print_result(args, result, fa.format_result)
     values = fa.sweep_values(case, args.sweep, *(args.range or (None, None)), args.points)
     result = fa.sweep(case, args.sweep, values)
     if args.plot is not None:
         from .analysis.feed_unit_plots import plot_sweep
         result["plot"] = str(plot_sweep(result, args.plot))
-    print(json.dumps(result, indent=2) if args.json else
-          fa.format_sweep(result) + (f"\nplot: {result['plot']}" if args.plot else ""))
-    return 0
+    return _print_result(args, result, fa.format_sweep)
 
 
 def _ball_to_ball_arguments(p) -> None:
@@ -494,9 +497,7 @@ def _ball_to_ball(args) -> int:
         from .analysis.ball_to_ball_plots import plot_side_ratio
         sweep = ball_to_ball.side_ratio_sweep(case, progress=_progress(args))
         result["plot"] = str(plot_side_ratio(sweep, result, case.side_ratio, args.plot))
-    print(json.dumps(result, indent=2) if args.json else ball_to_ball.format_result(result)
-          + (f"\nplot: {result['plot']}" if args.plot else ""))
-    return 0
+    return _print_result(args, result, ball_to_ball.format_result)
 
 
 def _wear_arguments(p) -> None:
@@ -515,9 +516,7 @@ def _wear(args) -> int:
     if args.plot is not None:
         from .analysis.wear_plots import plot_figures
         result["plot"] = str(plot_figures(case, result, args.plot))
-    print(json.dumps(result, indent=2) if args.json else
-          wear.format_result(result) + (f"\nplot: {result['plot']}" if args.plot else ""))
-    return 0
+    return _print_result(args, result, wear.format_result)
 
 
 def _nothing(p) -> None:

@@ -18,24 +18,7 @@ from guideway_fmu import cli
 from guideway_fmu.cosim import master, system
 from guideway_fmu.cosim.folder_lock import LOCK_FILE, FolderInUse, folder_lock
 from guideway_fmu.cosim.run import run
-from support import write_file
-
-SCENARIO = """\
-name = "probe"
-
-[experiment]
-stop = {stop}
-step = 0.001
-algorithm = "jacobi"
-
-[components.R]
-fmu = "{fmu}"
-parameters = {{ fault = "{fault}" }}
-"""
-
-
-def probe(tmp_path, fmu, fault="none", stop=0.01) -> Path:
-    return write_file(tmp_path, SCENARIO.format(fmu=fmu, fault=fault, stop=stop), "probe.toml")
+from support import probe_scenario
 
 
 def test_a_run_into_a_folder_another_holds_is_refused_naming_it_and_leaves_it_intact(
@@ -44,7 +27,7 @@ def test_a_run_into_a_folder_another_holds_is_refused_naming_it_and_leaves_it_in
     out.mkdir()
     (out / "results.csv").write_text("time,R.x\n0.0,0.0\n")  # the other run's rows
     with folder_lock(out):
-        assert cli.main(["run", str(probe(tmp_path, faulty)), "--out", str(out),
+        assert cli.main(["run", str(probe_scenario(tmp_path, faulty)), "--out", str(out),
                          "--no-progress"]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"guideway-fmu run: error: {out}: another run writes into this folder "
@@ -55,7 +38,7 @@ def test_a_run_into_a_folder_another_holds_is_refused_naming_it_and_leaves_it_in
 
 @pytest.mark.parametrize("fault", ["none", "raise"])
 def test_the_lock_is_released_when_a_run_ends_or_fails(tmp_path, faulty, fault):
-    s = system.load(probe(tmp_path, faulty, fault))
+    s = system.load(probe_scenario(tmp_path, faulty, fault))
     if fault == "none":
         run(s, tmp_path / "out", progress=False)
     else:
@@ -81,7 +64,7 @@ def test_a_sweep_and_a_diagnosis_into_a_held_folder_are_refused_before_writing(t
 
 @pytest.mark.slow  # child processes
 def test_two_runs_started_into_one_folder_one_runs_the_other_is_refused(tmp_path, faulty):
-    path = probe(tmp_path, faulty, "slow", stop=100.0)  # 10 ms of wall time a step
+    path = probe_scenario(tmp_path, faulty, "slow", stop=100.0)  # 10 ms of wall time a step
     env = {**os.environ, "PYTHONPATH": str(Path(guideway_fmu.__file__).parents[1])}
     command = [sys.executable, "-m", "guideway_fmu.cli", "run", str(path), "--out",
                str(tmp_path / "out"), "--no-progress"]

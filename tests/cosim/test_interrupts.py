@@ -20,20 +20,7 @@ import pytest
 
 import guideway_fmu
 from guideway_fmu.cosim.interrupts import GRACE_PERIOD
-
-SCENARIO = """\
-name = "probe"
-
-[experiment]
-stop = {stop}
-step = {step}
-algorithm = "jacobi"
-{extra}
-[components.R]
-fmu = "{fmu}"
-parameters = {{ fault = "{fault}" }}
-"""
-
+from support import probe_scenario
 
 @pytest.fixture
 def start(tmp_path, faulty):
@@ -42,9 +29,7 @@ def start(tmp_path, faulty):
     children = []
 
     def launch(fault, stop, step, extra="", options=()):
-        path = tmp_path / "probe.toml"
-        path.write_text(SCENARIO.format(fmu=faulty, fault=fault, stop=stop, step=step,
-                                        extra=extra))
+        path = probe_scenario(tmp_path, faulty, fault, stop, step, extra)
         (tmp_path / "tmp").mkdir()
         env = {**os.environ, "TMPDIR": str(tmp_path / "tmp"),
                "PYTHONPATH": str(Path(guideway_fmu.__file__).parents[1])}

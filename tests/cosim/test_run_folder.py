@@ -20,24 +20,7 @@ import pytest
 import guideway_fmu
 from guideway_fmu.cosim import master, run as run_module, system
 from guideway_fmu.cosim.run import read, run, write_json
-from support import write_file
-
-SCENARIO = """\
-name = "probe"
-
-[experiment]
-stop = {stop}
-step = 0.001
-algorithm = "jacobi"
-
-[components.R]
-fmu = "{fmu}"
-parameters = {{ fault = "{fault}" }}
-"""
-
-
-def probe(tmp_path, fmu, fault="none", stop=0.03) -> Path:
-    return write_file(tmp_path, SCENARIO.format(fmu=fmu, fault=fault, stop=stop), "probe.toml")
+from support import probe_scenario
 
 
 def strict(text: str) -> dict:
@@ -54,14 +37,14 @@ def test_a_failed_instantiation_is_the_error_of_the_summary(tmp_path, faulty):
             if not item.filename.startswith("binaries/"):
                 dst.writestr(item, src.read(item))
     with pytest.raises(master.SimulationError, match="probe: cannot instantiate R from"):
-        run(system.load(probe(tmp_path, broken)), tmp_path / "out", progress=False)
+        run(system.load(probe_scenario(tmp_path, broken, stop=0.03)), tmp_path / "out", progress=False)
     summary = strict((tmp_path / "out" / "summary.json").read_text())
     assert summary["error"].startswith(f"probe: cannot instantiate R from {broken}")
     assert summary["steps"] == 0 and summary["results"] == {"rows": 0, "bytes": 10}  # the header
 
 
 def test_the_summary_is_strict_json_with_non_finite_numbers_as_strings(tmp_path, faulty):
-    run(system.load(probe(tmp_path, faulty)), tmp_path / "out", progress=False)
+    run(system.load(probe_scenario(tmp_path, faulty, stop=0.03)), tmp_path / "out", progress=False)
     summary = strict((tmp_path / "out" / "summary.json").read_text())
     assert summary["experiment"]["max_step"] == "inf"  # the defaults: no bound, no timeout
     assert summary["experiment"]["step_timeout"] == "inf"
@@ -86,7 +69,7 @@ def test_a_summary_that_cannot_be_written_names_it_and_leaves_the_former_one_who
 
 def test_read_gives_the_recording_back_and_refuses_a_cut_or_changed_results_file(tmp_path,
                                                                                 faulty):
-    result = run(system.load(probe(tmp_path, faulty)), tmp_path / "out", progress=False)
+    result = run(system.load(probe_scenario(tmp_path, faulty, stop=0.03)), tmp_path / "out", progress=False)
     out = tmp_path / "out"
     recording, summary = read(out)
     assert np.array_equal(recording.time, result.recording.time)
@@ -133,7 +116,7 @@ def test_a_file_size_limit_ends_the_run_naming_the_file_and_the_summary_says_wha
     out = tmp_path / "out"
     env = {**os.environ, "PYTHONPATH": str(Path(guideway_fmu.__file__).parents[1])}
     child = subprocess.run(
-        [sys.executable, "-c", CHILD, "run", str(probe(tmp_path, faulty, stop=2.0)), "--out",
+        [sys.executable, "-c", CHILD, "run", str(probe_scenario(tmp_path, faulty, stop=2.0)), "--out",
          str(out), "--no-progress"], capture_output=True, text=True, env=env, timeout=120)
     assert child.returncode == 2, child.stderr[-2000:]
     assert f"guideway-fmu run: error: probe: cannot write {out / 'results.csv'}: File too large; " \
