@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from guideway_fmu import cli, examples, scenarios
+from guideway_fmu.cosim import interrupts
 from guideway_fmu.output.progress import stages
 from support import write_file, write_run_folder
 
@@ -74,6 +75,20 @@ def test_an_error_that_is_not_the_librarys_named_kind_is_not_hidden(monkeypatch)
     monkeypatch.setattr(cli, "COMMANDS", commands)
     with pytest.raises(KeyError, match="a defect"):
         cli.main(["scenarios"])
+
+
+def test_the_command_runs_one_thread_numerical_libraries_unless_the_user_chose(monkeypatch):
+    seen = {}
+    monkeypatch.setattr(cli, "main", lambda: seen.update(
+        {v: cli.os.environ.get(v) for v in cli.THREAD_VARIABLES}) or 0)
+    for variable in cli.THREAD_VARIABLES:
+        monkeypatch.delenv(variable, raising=False)
+    monkeypatch.setenv("MKL_NUM_THREADS", "3")
+    monkeypatch.setattr(interrupts, "exit_without_finalising", sys.exit)
+    with pytest.raises(SystemExit) as done:
+        cli.entry()
+    assert done.value.code == 0
+    assert seen == {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "3"}
 
 
 # -- every command says when its work failed -------------------------------------------------
