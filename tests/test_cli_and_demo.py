@@ -44,6 +44,7 @@ def test_stiffness_curves_through_fmus_match_physics_derivative(fmu_dir):
 SCENARIOS = scenarios.FOLDER
 
 
+@pytest.mark.slow
 def test_cli_run_unloaded_rig_oscillates_at_the_natural_frequency(fmu_dir, tmp_path, capsys):
     out = tmp_path / "run"
     assert cli.main(["run", str(SCENARIOS / "soleimanian2020_unloaded.toml"), "--fmus", str(fmu_dir),
@@ -244,6 +245,7 @@ def test_exit_without_finalising_keeps_buffered_output_and_the_code():
 
 
 # -- what the commands print, and their exit statuses ----------------------------------------
+@pytest.mark.slow
 def test_run_of_a_scenario_without_plots_plots_every_instance_and_lists_its_files(
         fmu_dir, tmp_path, capsys):
     from guideway_fmu.cosim import system

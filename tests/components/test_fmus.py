@@ -505,6 +505,7 @@ SIMULATIONS = {  # name -> start values of a short simulate_fmu run
 }
 
 
+@pytest.mark.slow
 def test_fmus_instantiate_again_after_a_previous_instance_was_freed(fmu_dir):
     def run(name):
         result = simulate_fmu(str(fmu_dir / f"{name}.fmu"), start_values=SIMULATIONS[name],

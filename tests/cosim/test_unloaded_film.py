@@ -34,6 +34,7 @@ def _upper_load(s, monkeypatch=None, floor=None):
         "Contact.F_upper"]
 
 
+@pytest.mark.slow
 def test_a_load_floor_converges_to_the_floor_free_film_as_its_power_m_limit(lifting, monkeypatch):
     # a floor F_f enters as h F_f^m / C (m = 0.045): the change falls with the floor, and is
     # exactly 0 once that ratio is under 0.01 (the squeeze exponent's bound); the floor-free
@@ -49,6 +50,7 @@ def test_a_load_floor_converges_to_the_floor_free_film_as_its_power_m_limit(lift
     assert changes[3] == 0.0
 
 
+@pytest.mark.slow
 def test_co_simulation_of_lifting_rollers_converges_with_the_macro_step(lifting):
     ref = monolithic.simulate(lifting, rtol=1e-10, columns=["Contact.F_upper"])
     errors = []

@@ -231,6 +231,7 @@ def test_preload_loss_rig_follows_the_running_distance_hand_calculation(fmu_dir,
     np.testing.assert_allclose(ref.columns["Rig.drive_force"], expected, rtol=1e-6, atol=1e-6)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fmu, params", [
     ("FrictionDahl", {"presliding_distance": 1e-4, "second_distance": 1e-3, "second_share": 0.4}),
     ("FrictionPreloadLoss", {"loss": 0.3, "wear_distance": 0.002}),

@@ -88,6 +88,7 @@ def test_unloaded_row_keeps_its_spacing_limiting_case():
     assert model.outputs(0.0, state, inputs)["contact_force"] == 0.0
 
 
+@pytest.mark.slow
 def test_groove_wave_makes_contacts_form_and_break_and_conserves_the_clearance():
     model = row(balls=12, zone=12 * 2 * RADIUS + 0.6e-3, amplitude=np.radians(1.0))
     inputs = {"u": 0.1, "x": 0.0, "F_normal": 1200.0, "F_side": 0.0, "M_yaw": -2.0}
@@ -122,6 +123,7 @@ def test_bad_row_parameters_are_refused_by_name(changes, name):
         row(**changes)
 
 
+@pytest.mark.slow
 def test_advance_across_a_closing_gap_matches_a_tight_adaptive_integration():
     # one call of advance over 3 t_c (the hand-calculated closing time) against RK45 at
     # rtol 1e-12 with steps of t_c / 1000: the event-located substeps land on it to well below

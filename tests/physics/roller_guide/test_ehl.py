@@ -324,6 +324,7 @@ def test_pure_squeeze_film_thins_as_rigid_isoviscous_theory():
     assert np.allclose(film, theory, rtol=5e-3)
 
 
+@pytest.mark.slow
 def test_sudden_load_increase_is_cushioned_by_the_squeeze_film():
     contact = ehl.LineContactEHL.from_dimensionless(*CHECK_POINT)
     transit = contact.half_width / contact.entrainment_velocity
@@ -341,6 +342,7 @@ def test_sudden_load_increase_is_cushioned_by_the_squeeze_film():
     assert run.steps[-1].H_min == pytest.approx(after.H_min, rel=0.01)
 
 
+@pytest.mark.slow
 def test_a_falling_load_that_starves_the_inlet_converges_and_thins_the_film():
     # The upper roller of soleimanian2020_6000N_9000Hz early in its run (Table 4 surface):
     # unloaded from 630 to 290 N in 52 us at u_m = 0.137 m/s. The film opens faster than the
