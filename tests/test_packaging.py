@@ -72,3 +72,8 @@ def test_a_wheel_installs_a_command_that_runs_its_examples_from_anywhere(tmp_pat
     modes = _run(command, "modes", "x/ball_guides/wu2012_table2_moment_0.toml", cwd=elsewhere,
                  env=env).stdout
     assert "pitching" in modes and "yawing" in modes
+    # FMUs built from the installed package (its own files found among site-packages)
+    env["GUIDEWAY_FMU_CACHE"] = str(tmp_path / "cache")
+    _run(command, "run", "soleimanian2020_unloaded", "--stop", "0.0004", "--out", "run",
+         "--no-progress", cwd=elsewhere, env=env)
+    assert (elsewhere / "run" / "results.csv").is_file()

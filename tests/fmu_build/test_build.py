@@ -3,9 +3,11 @@ rebuilds FMUs built from other code, and leaves current FMUs and a user's replac
 from __future__ import annotations
 
 import shutil
+from pathlib import Path
 
-from guideway_fmu.fmu_build import build
+from guideway_fmu.components import registry
 from guideway_fmu.fmi.archive import rewrite
+from guideway_fmu.fmu_build import build
 
 
 def test_ensure_rebuilds_stale_and_missing_fmus_and_keeps_current_and_foreign_ones(
@@ -62,3 +64,21 @@ def test_a_failed_archive_rewrite_leaves_the_source_and_no_partial_file(tmp_path
         rewrite(source, source, refuse)
     assert source.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["A.fmu"]
+
+
+def test_the_files_an_fmu_ships_are_found_beside_third_party_packages_as_in_site_packages(
+        tmp_path, monkeypatch):
+    # installed (not editable), the package sits in site-packages beside its dependencies; a
+    # namespace package there (matplotlib's mpl_toolkits) made modulefinder fail with
+    # "'NoneType' object has no attribute 'is_package'" in every command that builds FMUs
+    site = tmp_path / "site-packages"
+    shutil.copytree(build.PACKAGE_DIR, site / "guideway_fmu",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("numpy", "scipy", "fmpy", "mpl_toolkits"):
+        (site / name / "inner").mkdir(parents=True)  # namespace packages: no __init__.py
+    component = registry.component("VerticalDynamics")
+    expected = [p.relative_to(build.PACKAGE_DIR) for p in build.shipped_files(component)]
+    monkeypatch.setattr(build, "PACKAGE_DIR", site / "guideway_fmu")
+    shipped = [p.relative_to(site / "guideway_fmu") for p in build.shipped_files(component)]
+    assert shipped == expected
+    assert Path("physics/roller_guide/carriage.py") in shipped

@@ -49,9 +49,26 @@ hold_namespace(globals())
 '''
 
 
+class _PackageFinder(modulefinder.ModuleFinder):
+    """modulefinder that opens this package's modules only: an FMU ships the package's own
+    files, and beside an installed package (site-packages) modulefinder would read every
+    third-party package it imports, failing on namespace packages (mpl_toolkits)."""
+
+    def find_module(self, name, path, parent=None):
+        if parent is not None:
+            inside = parent.__name__.split(".")[0] == PACKAGE_DIR.name
+        elif path is not None:  # a package's own __init__
+            inside = all(Path(p).is_relative_to(PACKAGE_DIR) for p in path)
+        else:
+            inside = name == PACKAGE_DIR.name
+        if not inside:
+            raise ImportError(name)  # recorded as not found, as outside the package's folder
+        return super().find_module(name, path, parent)
+
+
 def shipped_files(cls: type) -> list[Path]:
     """The package's source files an FMU of component class ``cls`` needs (its imports, closed)."""
-    finder = modulefinder.ModuleFinder(path=[str(PACKAGE_DIR.parent)])
+    finder = _PackageFinder(path=[str(PACKAGE_DIR.parent)])
     for module in (cls.__module__, RUNTIME):
         finder.import_hook(module)
     files = {Path(m.__file__) for m in finder.modules.values() if m.__file__}
