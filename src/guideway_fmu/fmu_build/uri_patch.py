@@ -2,7 +2,7 @@
 percent-decodes the resource URI (applied by the build).
 
 FMI passes ``fmuResourceLocation`` as a file URI, percent-encoded: fmpy and our C host write
-``/tmp/Jürgen/x`` as ``file:///tmp/J%C3%BCrgen/x``. pythonfmu's ``fmi2Instantiate`` (fmi2.cpp)
+a folder ``Jürgen/x`` as ``file:///<parent>/J%C3%BCrgen/x``. pythonfmu's ``fmi2Instantiate`` (fmi2.cpp)
 replaces ``%20`` by a space, drops ``file://`` and reads ``slavemodule.txt`` and the slave script
 under what is left: under a path holding any other escaped character (a user name with an
 umlaut, a ``+``, a ``%``) it finds neither, and its constructor then called a null class: a
