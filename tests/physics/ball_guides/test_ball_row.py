@@ -123,6 +123,14 @@ def test_bad_row_parameters_are_refused_by_name(changes, name):
         row(**changes)
 
 
+def closing_gap(model, inputs, gap=1e-7):
+    """A state of touching balls with one gap [m] between the first two, and the time [s] that
+    gap takes to close (by hand: gap over the relative speed of their contact points)."""
+    state = touching(model) + [-gap / 2, gap / 2]
+    eps1, eps2 = model.row(state, inputs).epsilon
+    return state, gap / ((eps1 - eps2) * inputs["u"] / 2)
+
+
 @pytest.mark.slow
 def test_advance_across_a_closing_gap_matches_a_tight_adaptive_integration():
     # one call of advance over 3 t_c (the hand-calculated closing time) against RK45 at
@@ -130,10 +138,7 @@ def test_advance_across_a_closing_gap_matches_a_tight_adaptive_integration():
     # the error of one plain RK4 step across the jump
     model = row()
     inputs = loads(model)
-    gap = 1e-7
-    state = touching(model) + [-gap / 2, gap / 2]
-    eps1, eps2 = model.row(state, inputs).epsilon
-    t_c = gap / ((eps1 - eps2) * inputs["u"] / 2)
+    state, t_c = closing_gap(model, inputs)
     h = 3 * t_c
     exact = solve_ivp(lambda t, y: model.derivatives(t, y, inputs), (0, h), state, rtol=1e-12,
                       atol=1e-18, max_step=t_c / 1000).y[:, -1]
@@ -160,9 +165,7 @@ def test_limiting_case_group_changes_beyond_the_substep_bound_are_refused(monkey
     model = row()
     inputs = loads(model)
     gap = 1e-7
-    state = touching(model) + [-gap / 2, gap / 2]
-    eps1, eps2 = model.row(state, inputs).epsilon
-    t_close = gap / ((eps1 - eps2) * inputs["u"] / 2)
+    state, t_close = closing_gap(model, inputs, gap)
     with pytest.raises(ValueError, match="groups change too often"):
         model.advance(0.0, state, inputs, 1.5 * t_close)
     monkeypatch.undo()  # allowed two, the same step passes the gap's closing
