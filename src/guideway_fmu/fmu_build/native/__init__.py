@@ -1,0 +1,12 @@
+"""Native FMUs: each component's Python definition translated to C, compiled, no Python inside.
+
+Mechanism (one for every FMU): the physics and the component methods are written once, in the
+Python edition; :mod:`.translate` reads their syntax trees and writes C for the subset the
+physics uses (numbers, tuples, objects and dicts of known shape, calls inlined, loops,
+branches, raise with the Python message), typed by example: a component built at its start
+values fixes the shape of everything it holds. A SymPy or CasADi route would need the physics
+rewritten as expressions (and loses its branches, substep loops and error messages); a C core
+called from Python would make the readable edition C. The FMI layer (:file:`fmi2_slave.c`) is
+written once for every native FMU; :mod:`.component` writes a component's unit and
+:mod:`.build` compiles and packs it.
+"""

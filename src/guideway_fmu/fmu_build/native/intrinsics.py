@@ -1,0 +1,237 @@
+"""Builtins, ``math`` and ``numpy`` functions of scalars, as C.
+
+A call whose arguments are all known is evaluated by the Python function itself when the C is
+written (so constants fold exactly as Python computes them); otherwise it becomes the C99
+function of the same meaning. NaN follows the Python function: ``np.maximum`` passes a NaN on,
+the builtin ``max`` keeps its first argument unless another compares greater.
+"""
+from __future__ import annotations
+
+import ast
+import builtins
+import math
+
+import numpy as np
+
+from .translate import from_python
+from .values import Const, Dict, Obj, Scalar, Tuple, describe, is_number
+
+# Python function -> C function of one double
+_UNARY = {
+    math.sqrt: "sqrt", math.exp: "exp", math.log: "log", math.sin: "sin", math.cos: "cos",
+    math.tan: "tan", math.atan: "atan", math.asin: "asin", math.acos: "acos", math.tanh: "tanh",
+    math.sinh: "sinh", math.cosh: "cosh", math.expm1: "expm1", math.log1p: "log1p",
+    math.log10: "log10", math.fabs: "fabs",
+    np.sqrt: "sqrt", np.exp: "exp", np.log: "log", np.sin: "sin", np.cos: "cos", np.tan: "tan",
+    np.arctan: "atan", np.tanh: "tanh", np.expm1: "expm1", np.log1p: "log1p", np.abs: "fabs",
+    np.sign: "gw_sign", np.log10: "log10", np.cbrt: "cbrt", np.arcsin: "asin",
+    np.arccos: "acos", np.sinh: "sinh", np.cosh: "cosh", np.floor: "floor", np.ceil: "ceil",
+}
+# Python function -> C function of two doubles
+_BINARY = {math.atan2: "atan2", math.hypot: "hypot", math.pow: "pow", math.copysign: "copysign",
+           np.arctan2: "atan2", np.hypot: "hypot", np.power: "pow",
+           np.maximum: "gw_npmax", np.minimum: "gw_npmin", np.fmax: "fmax", np.fmin: "fmin"}
+# Python predicate -> C predicate of one double
+_TESTS = {math.isfinite: "isfinite", math.isnan: "isnan", math.isinf: "isinf",
+          np.isfinite: "isfinite", np.isnan: "isnan", np.isinf: "isinf"}
+
+
+def _known(function, args, kwargs):
+    return all(isinstance(a, Const) for a in [*args, *kwargs.values()])
+
+
+def _fold(function, args, kwargs):
+    return from_python(function(*[a.value for a in args], **{k: v.value for k, v in kwargs.items()}))
+
+
+def _numeric(function, make):
+    """The handler of ``function``: folded when its arguments are known, else ``make``."""
+    def handler(tr, args, kwargs):
+        if _known(function, args, kwargs):
+            return _fold(function, args, kwargs)
+        return make(tr, [tr.scalar(a) if not isinstance(a, (Tuple, Dict)) else a for a in args],
+                    kwargs)
+    return handler
+
+
+def _unary(c_name):
+    return lambda tr, args, kwargs: Scalar("double", f"{c_name}((double){args[0].code})")
+
+
+def _binary(c_name):
+    return lambda tr, args, kwargs: Scalar(
+        "double", f"{c_name}((double){args[0].code}, (double){args[1].code})")
+
+
+def _test(c_name):
+    return lambda tr, args, kwargs: Scalar("bool", f"{c_name}((double){args[0].code})")
+
+
+def _rounding(c_name):
+    return lambda tr, args, kwargs: Scalar("long", f"gw_to_long({c_name}({args[0].code}))")
+
+
+def _float(tr, args, kwargs):
+    return Scalar("double", f"((double){args[0].code})")
+
+
+def _int(tr, args, kwargs):
+    a = args[0]
+    return a if a.ctype == "long" else Scalar("long", f"gw_to_long(trunc({a.code}))")
+
+
+def _abs(tr, args, kwargs):
+    a = args[0]
+    return Scalar("long", f"labs({a.code})") if a.ctype == "long" else \
+        Scalar("double", f"fabs({a.code})")
+
+
+def _extreme(c_double, c_long):
+    def make(tr, args, kwargs):
+        items = tr.iterate(args[0]) if len(args) == 1 else args
+        items = [tr.scalar(i) for i in items]
+        result = items[0]
+        for item in items[1:]:
+            both_long = result.ctype == item.ctype == "long"
+            result = Scalar("long" if both_long else "double",
+                            f"{c_long if both_long else c_double}({result.code}, {item.code})")
+        return result
+    return make
+
+
+def _sum(tr, args, kwargs):
+    items = tr.iterate(args[0])
+    start = args[1] if len(args) > 1 else Const(0)
+    total = start
+    for item in items:
+        total = tr.binary(_ADD, total, item)
+    return total
+
+
+def _asarray(tr, args, kwargs):
+    value = args[0]
+    if isinstance(value, Const) and is_number(value.value):
+        return Const(float(value.value))
+    if isinstance(value, Scalar):
+        return Scalar("double", f"((double){value.code})") if value.ctype != "double" else value
+    raise tr.error(f"an array of {describe(value)} is not translated (scalars only)")
+
+
+def _reduce_all(is_all):
+    def handler(tr, args, kwargs):
+        value = args[0]
+        items = tr.iterate(value) if isinstance(value, (Tuple, Dict)) else [value]
+        terms = [tr.truth(i) for i in items]
+        if any(isinstance(t, Const) and t.value != is_all for t in terms):
+            return Const(not is_all)
+        codes = [t.code for t in terms if isinstance(t, Scalar)]
+        if not codes:
+            return Const(is_all)
+        return Scalar("bool", "(" + (" && " if is_all else " || ").join(codes) + ")")
+    return handler
+
+
+def _isinstance(tr, args, kwargs):
+    value, classes = args
+    classes = tuple(c.value for c in tr.iterate(classes)) if isinstance(classes, Tuple) else \
+        classes.value
+    return Const(any(issubclass(t, classes) for t in _types(value)))
+
+
+def _types(value):
+    """The Python types a value may have."""
+    if isinstance(value, Const):
+        return (type(value.value),)
+    if isinstance(value, Scalar):
+        return {"double": (float, np.float64), "long": (int,), "bool": (bool,)}[value.ctype]
+    if isinstance(value, Obj):
+        return (value.cls,)
+    return (tuple,) if isinstance(value, Tuple) else (dict,)
+
+
+def _type(tr, args, kwargs):
+    types_ = _types(args[0])
+    return Const(types_[0])
+
+
+def _getattr(tr, args, kwargs):
+    name = args[1]
+    if not isinstance(name, Const):
+        raise tr.error("getattr needs a name known when the C is written")
+    try:
+        return tr.attribute(args[0], name.value)
+    except Exception:
+        if len(args) > 2:
+            return args[2]
+        raise
+
+
+def _len(tr, args, kwargs):
+    value = args[0]
+    if isinstance(value, (Tuple, Dict)):
+        return Const(len(value.items))
+    if isinstance(value, Const):
+        return Const(len(value.value))
+    raise tr.error(f"len of {describe(value)}")
+
+
+def _zip(tr, args, kwargs):
+    return Tuple([Tuple(list(items)) for items in zip(*[tr.iterate(a) for a in args])])
+
+
+def _enumerate(tr, args, kwargs):
+    return Tuple([Tuple([Const(i), item]) for i, item in enumerate(tr.iterate(args[0]))])
+
+
+def _range(tr, args, kwargs):
+    if not _known(range, args, kwargs):
+        raise tr.error("range with a run-time bound is translated only as a for loop's sequence")
+    return Const(range(*[a.value for a in args]))
+
+
+def _clip(tr, args, kwargs):
+    x, low, high = args
+    return Scalar("double", f"gw_npmin(gw_npmax({x.code}, {low.code}), {high.code})")
+
+
+def _bool(tr, args, kwargs):
+    return tr.truth(args[0])
+
+
+def _where(tr, args, kwargs):
+    condition = tr.truth(args[0])
+    a, b = tr.scalar(args[1]), tr.scalar(args[2])
+    if isinstance(condition, Const):
+        return a if condition.value else b
+    return Scalar("double", f"({condition.code} ? (double){a.code} : (double){b.code})")
+
+
+_ADD = ast.Add()  # the operator _sum adds with
+
+
+def table() -> dict:
+    """The intrinsic handlers by Python function."""
+    handlers = {}
+    for function, c_name in _UNARY.items():
+        handlers[function] = _numeric(function, _unary(c_name))
+    for function, c_name in _BINARY.items():
+        handlers[function] = _numeric(function, _binary(c_name))
+    for function, c_name in _TESTS.items():
+        handlers[function] = _numeric(function, _test(c_name))
+    handlers.update({
+        math.floor: _numeric(math.floor, _rounding("floor")),
+        math.ceil: _numeric(math.ceil, _rounding("ceil")),
+        builtins.float: _numeric(float, _float), np.float64: _numeric(np.float64, _float),
+        builtins.int: _numeric(int, _int), builtins.abs: _numeric(abs, _abs),
+        builtins.max: _numeric(max, _extreme("gw_pymax", "gw_pymaxl")),
+        builtins.min: _numeric(min, _extreme("gw_pymin", "gw_pyminl")),
+        builtins.sum: _sum, np.sum: _sum,
+        np.asarray: _asarray, np.array: _asarray,
+        np.all: _reduce_all(True), builtins.all: _reduce_all(True),
+        np.any: _reduce_all(False), builtins.any: _reduce_all(False),
+        builtins.isinstance: _isinstance, builtins.type: _type, builtins.getattr: _getattr,
+        builtins.len: _len, builtins.zip: _zip, builtins.enumerate: _enumerate,
+        builtins.range: _range, builtins.bool: _bool, np.where: _where,
+        np.clip: _numeric(np.clip, _clip),
+    })
+    return handlers
