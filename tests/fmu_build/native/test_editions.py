@@ -22,6 +22,8 @@ NATIVE = {
     "HorizontalRig": {"a": (-5.0, 5.0), "F_friction": (-40.0, 40.0)},
     "FrictionCoulomb": {"F_upper": (0.0, 900.0), "F_lower": (0.0, 900.0), "u": (-0.2, 0.2)},
     "FrictionStribeck": {"F_upper": (0.0, 900.0), "F_lower": (0.0, 900.0), "u": (-0.2, 0.2)},
+    "FrictionDahl": {"F_upper": (0.0, 900.0), "F_lower": (0.0, 900.0), "u": (-0.2, 0.2),
+                     "x": (-3e-5, 3e-5)},
     "ContactDryHertz": {"y": (-2e-6, 2e-6), "y_dot": (-1e-3, 1e-3), "u": (-0.2, 0.2)},
     "VerticalDynamics": {"F_contact": (-5e3, 5e3), "F_ext": (-100.0, 100.0),
                          "K_contact": (0.0, 1e9), "C_contact": (0.0, 1e3)},
@@ -72,7 +74,9 @@ BAD = [("VerticalDynamics", {"mass": -1.0}, "Carriage.mass must be > 0, got -1.0
        ("FrictionCoulomb", {"rollers_per_groove": 0},
         "CoulombParams.rollers_per_groove must be a positive integer, got 0"),
        ("ContactDryHertz", {"preload": -5.0}, "preload"),
-       ("HorizontalRig", {"mass": math.inf}, "mass must be finite, got inf")]
+       ("HorizontalRig", {"mass": math.inf}, "mass must be finite, got inf"),
+       ("FrictionDahl", {"second_share": 0.5, "third_share": 0.75},
+        "third_share must lie in [0.0, 0.5], got 0.75")]
 
 
 @pytest.mark.parametrize("name, parameters, words", BAD)
@@ -166,3 +170,17 @@ def test_two_instances_keep_their_own_parameters_and_state(native_dir):
     finally:
         a.close()
         b.close()
+
+
+def test_every_component_is_native_python_only_with_a_reason_or_refused_by_name():
+    from guideway_fmu.fmu_build import native
+    from guideway_fmu.fmu_build.native.component import Unit
+    from guideway_fmu.fmu_build.native.source import TranslationError
+
+    assert set(native.COMPONENTS) == set(NATIVE)  # every native edition is tested above
+    assert not set(native.COMPONENTS) & set(native.PYTHON_ONLY)
+    for name in registry.names():
+        if name in native.COMPONENTS or name in native.PYTHON_ONLY:
+            continue
+        with pytest.raises(TranslationError, match=name + r"|\.py:\d+: "):
+            Unit(registry.component(name)).text  # noqa: B018 - refused, naming what and where

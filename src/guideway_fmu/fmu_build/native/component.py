@@ -26,7 +26,7 @@ from .intrinsics import table
 from .source import TranslationError
 from .statements import Statements
 from .translate import TranslatorCore, _is_object, from_python, func_of
-from .values import Const, Dict, Obj, Scalar, Tuple
+from .values import Array, Const, Dict, Obj, Scalar, Tuple
 
 _C_TYPES = {"Real": "double", "Integer": "long", "Boolean": "bool"}
 _TYPE_CODES = {"Real": "GW_REAL", "Integer": "GW_INTEGER", "Boolean": "GW_BOOLEAN"}
@@ -92,6 +92,8 @@ class Unit:
             return self.field("double", path, value)
         if isinstance(value, (tuple, list)):
             return Tuple([self.layout(v, f"{path}_{i}") for i, v in enumerate(value)])
+        if isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype.kind in "fib":
+            return Array([self.layout(v, f"{path}_{i}") for i, v in enumerate(value)])
         if isinstance(value, dict) and all(isinstance(k, str) for k in value):
             return Dict({k: self.layout(v, f"{path}_{k}") for k, v in value.items()})
         if _is_object(value):
@@ -100,7 +102,8 @@ class Unit:
         if callable(value) and getattr(value, "__closure__", None):
             return func_of(value, cell_value=lambda v, name: self.layout(v, f"{path}_{name}"))
         if isinstance(value, np.ndarray):
-            raise TranslationError(f"{self.cls.__name__}: the array {path} is not translated yet")
+            raise TranslationError(f"{self.cls.__name__}: the {value.ndim}-dimensional array "
+                                   f"{path} is not translated yet")
         return Const(value)
 
     # -- the translated methods ---------------------------------------------------------

@@ -7,6 +7,7 @@ import operator
 
 from .translate import Frame, Func, _Definition, _Super, from_python
 from .values import (
+    Array,
     Choice,
     Const,
     Dict,
@@ -187,6 +188,9 @@ class Expressions:
                 Scalar("bool", f"(!{truth.code})")
         if isinstance(value, Const) and is_number(value.value):
             return Const(-value.value if isinstance(node.op, ast.USub) else +value.value)
+        if isinstance(value, Array):
+            return Array([self.binary(ast.Mult(), Const(-1.0 if isinstance(node.op, ast.USub)
+                                                        else 1.0), v) for v in value.items])
         s = self.scalar(value)
         if isinstance(node.op, ast.USub):
             return Scalar("double" if s.ctype == "double" else "long", f"(-{s.code})")
@@ -196,6 +200,10 @@ class Expressions:
         return self.binary(node.op, self.expr(node.left), self.expr(node.right))
 
     def binary(self, op, left, right):
+        if isinstance(left, Array) or isinstance(right, Array):
+            return self.elementwise(lambda a, b: self.binary(op, a, b), left, right)
+        if isinstance(left, Tuple) and isinstance(op, ast.Mult) and isinstance(right, Const):
+            return Tuple(left.items * right.value)
         if isinstance(left, Const) and isinstance(right, Const):
             try:
                 return from_python(_FOLD[type(op)](left.value, right.value))
@@ -226,12 +234,25 @@ class Expressions:
             raise self.error(f"the operator {kind.__name__} is not translated")
         return Scalar("double" if double else "long", f"({a.code} {_C[kind]} {b.code})")
 
+    def elementwise(self, function, *operands):
+        """``function`` applied element by element, numbers broadcast (numpy's rule for 1-D)."""
+        lengths = {len(o.items) for o in operands if isinstance(o, Tuple)}
+        if len(lengths) != 1:
+            raise self.error(f"arrays of lengths {sorted(lengths)} do not broadcast")
+        n = lengths.pop()
+        columns = [o.items if isinstance(o, Tuple) else [o] * n for o in operands]
+        return Array([function(*row) for row in zip(*columns)])
+
     def expr_Compare(self, node):
         left = self.expr(node.left)
         terms = []
         for op, right_node in zip(node.ops, node.comparators):
             right = self.expr(right_node)
             term = self.compare(op, left, right)
+            if isinstance(term, Array):
+                if len(node.ops) > 1:
+                    raise self.error("chained comparisons of arrays are not translated")
+                return term
             if isinstance(term, Const):
                 if not term.value:
                     return Const(False)
@@ -242,6 +263,9 @@ class Expressions:
 
     def compare(self, op, left, right):
         kind = type(op)
+        if kind not in (ast.Is, ast.IsNot, ast.In, ast.NotIn) and (
+                isinstance(left, Array) or isinstance(right, Array)):
+            return self.elementwise(lambda a, b: self.compare(op, a, b), left, right)
         if kind in (ast.Is, ast.IsNot) and isinstance(left, Choice):
             return _either(left.condition, self.compare(op, left.first, right),
                            self.compare(op, left.second, right))

@@ -110,6 +110,8 @@ static double gw_pymax(double a, double b) { return b > a ? b : a; }
 static double gw_pymin(double a, double b) { return b < a ? b : a; }
 static long gw_pymaxl(long a, long b) { return b > a ? b : a; }
 static long gw_pyminl(long a, long b) { return b < a ? b : a; }
+static double gw_degrees(double x) { return x * (180.0 / 3.14159265358979323846); }
+static double gw_radians(double x) { return x * (3.14159265358979323846 / 180.0); }
 static long gw_to_long(double x) { return isfinite(x) ? (long)x : 0; }
 
 #endif

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .translate import from_python
-from .values import Const, Dict, Obj, Scalar, Tuple, describe, is_number
+from .values import Array, Const, Dict, Obj, Scalar, Tuple, describe, is_number
 
 # Python function -> C function of one double
 _UNARY = {
@@ -26,6 +26,8 @@ _UNARY = {
     np.arctan: "atan", np.tanh: "tanh", np.expm1: "expm1", np.log1p: "log1p", np.abs: "fabs",
     np.sign: "gw_sign", np.log10: "log10", np.cbrt: "cbrt", np.arcsin: "asin",
     np.arccos: "acos", np.sinh: "sinh", np.cosh: "cosh", np.floor: "floor", np.ceil: "ceil",
+    np.degrees: "gw_degrees", np.radians: "gw_radians", math.degrees: "gw_degrees",
+    math.radians: "gw_radians",
 }
 # Python function -> C function of two doubles
 _BINARY = {math.atan2: "atan2", math.hypot: "hypot", math.pow: "pow", math.copysign: "copysign",
@@ -49,6 +51,8 @@ def _numeric(function, make):
     def handler(tr, args, kwargs):
         if _known(function, args, kwargs):
             return _fold(function, args, kwargs)
+        if function in _ELEMENTWISE and any(isinstance(a, Array) for a in args):
+            return tr.elementwise(lambda *row: handler(tr, list(row), kwargs), *args)
         return make(tr, [tr.scalar(a) if not isinstance(a, (Tuple, Dict)) else a for a in args],
                     kwargs)
     return handler
@@ -110,6 +114,8 @@ def _sum(tr, args, kwargs):
 
 def _asarray(tr, args, kwargs):
     value = args[0]
+    if isinstance(value, Tuple):
+        return Array([_asarray(tr, [item], {}) for item in value.items])
     if isinstance(value, Const) and is_number(value.value):
         return Const(float(value.value))
     if isinstance(value, Scalar):
@@ -194,6 +200,14 @@ def _clip(tr, args, kwargs):
     return Scalar("double", f"gw_npmin(gw_npmax({x.code}, {low.code}), {high.code})")
 
 
+def _setattr(tr, args, kwargs):
+    obj, name, value = args
+    if not (isinstance(obj, Obj) and isinstance(name, Const)):
+        raise tr.error("object.__setattr__ needs an object and a known name")
+    tr.set_field(obj, name.value, value)
+    return Const(None)
+
+
 def _bool(tr, args, kwargs):
     return tr.truth(args[0])
 
@@ -207,6 +221,9 @@ def _where(tr, args, kwargs):
 
 
 _ADD = ast.Add()  # the operator _sum adds with
+#: numpy's functions, which act element by element on an array
+_ELEMENTWISE = {f for f in [*_UNARY, *_BINARY, *_TESTS, np.float64, np.clip]
+                if isinstance(f, np.ufunc) or f in (np.clip,)}
 
 
 def table() -> dict:
@@ -232,6 +249,6 @@ def table() -> dict:
         builtins.isinstance: _isinstance, builtins.type: _type, builtins.getattr: _getattr,
         builtins.len: _len, builtins.zip: _zip, builtins.enumerate: _enumerate,
         builtins.range: _range, builtins.bool: _bool, np.where: _where,
-        np.clip: _numeric(np.clip, _clip),
+        np.clip: _numeric(np.clip, _clip), object.__setattr__: _setattr,
     })
     return handlers

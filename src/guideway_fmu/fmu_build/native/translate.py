@@ -14,12 +14,15 @@ import ast
 import builtins
 import dataclasses
 import inspect
+import sys
+import sysconfig
 import types
 
 import numpy as np
 
 from .source import TranslationError, definition, returns
 from .values import (
+    Array,
     Choice,
     Const,
     Dict,
@@ -99,6 +102,8 @@ def from_python(value, layout=None):
         value = value.item()
     if isinstance(value, (np.floating, np.integer, np.bool_)):
         value = value.item()
+    if isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype.kind in "fib":
+        return Array([from_python(v) for v in value])
     if isinstance(value, (tuple, list)):
         return Tuple([from_python(v) for v in value])
     if isinstance(value, dict) and all(isinstance(k, (str, int)) for k in value):
@@ -111,10 +116,21 @@ def from_python(value, layout=None):
 
 
 def _is_object(value) -> bool:
-    """An instance of a class of this package (an object the physics builds)."""
-    cls = type(value)
-    return cls.__module__.split(".")[0] == PACKAGE and hasattr(value, "__dict__") and \
+    """An instance of a class whose source the translator reads (an object the physics builds)."""
+    return translatable(type(value)) and hasattr(value, "__dict__") and \
         not isinstance(value, (type, types.FunctionType, BaseException))
+
+
+_LIBRARIES = tuple({sysconfig.get_path(k) for k in ("stdlib", "platstdlib", "purelib", "platlib")})
+
+
+def translatable(cls: type) -> bool:
+    """Whether objects of ``cls`` are translated: classes of this package or of other source
+    outside the Python installation (a user's model), not those of libraries."""
+    module = sys.modules.get(cls.__module__)
+    path = getattr(module, "__file__", None)
+    return cls.__module__.split(".")[0] == PACKAGE or (
+        path is not None and not path.startswith(_LIBRARIES))
 
 
 def func_of(function, receiver=None, cell_value=None) -> Func:
@@ -176,7 +192,7 @@ class TranslatorCore:
         if isinstance(value, Const) and is_number(value.value) and owner is not None:
             return self.variable(self.scalar(value), owner)
         if isinstance(value, Tuple):
-            return Tuple([self.variable(v, owner) for v in value.items])
+            return type(value)([self.variable(v, owner) for v in value.items])
         if isinstance(value, Dict):
             return Dict({k: self.variable(v, owner) for k, v in value.items.items()})
         if isinstance(value, Obj) and owner is not None and not isinstance(owner, Obj):
@@ -343,20 +359,22 @@ class TranslatorCore:
             return Obj(cls, {"message": args[0] if args else Const("")})
         if cls in (tuple, list):
             return Tuple(list(self.iterate(args[0]))) if args else Tuple([])
-        if cls.__module__.split(".")[0] != PACKAGE:
+        if not translatable(cls):
             raise self.error(f"objects of {cls.__qualname__} are not translated")
         obj = Obj(cls, {})
         if dataclasses.is_dataclass(cls) and "__init__" not in {k for c in cls.__mro__[1:]
                                                                  for k in vars(c)} - {"__init__"}:
             names = [f.name for f in dataclasses.fields(cls) if f.init]
             bound = self.bind_arguments(names, args, kwargs, cls.__name__)
-            for f in dataclasses.fields(cls):
+            for f in [f for f in dataclasses.fields(cls) if f.init]:
                 if f.name in bound:
                     value = bound[f.name]
                 elif f.default is not dataclasses.MISSING:
                     value = from_python(f.default)
-                else:
+                elif f.default_factory is not dataclasses.MISSING:
                     value = from_python(f.default_factory())
+                else:
+                    raise self.error(f"{cls.__name__}: argument {f.name} missing")
                 self.set_field(obj, f.name, value)
             if hasattr(cls, "__post_init__"):
                 self.inline(func_of(cls.__post_init__, obj), [], {})

@@ -38,6 +38,11 @@ class Tuple:
     items: list
 
 
+class Array(Tuple):
+    """A one-dimensional numpy array of known length: arithmetic, comparisons and numpy's
+    functions act element by element, broadcasting a number."""
+
+
 @dataclass
 class Obj:
     """An instance of ``cls`` with its attributes by name (its ``__dict__``)."""

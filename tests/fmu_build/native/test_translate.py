@@ -1,0 +1,133 @@
+"""The translator on small functions written for the purpose: each compiled C function is
+compared with the Python function it was translated from, on inputs that take every branch."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+from compiled import compiled
+
+from guideway_fmu.fmu_build.native.source import TranslationError
+
+
+def loop_carried(x, n):
+    total, step = 0.0, x
+    for i in range(int(n)):
+        total += step * i
+        step = step / 2.0
+    return total + step
+
+
+def branches_merge(x, y):
+    if x > y:
+        a, b = x, 1.0
+    elif x < 0.0:
+        a = -x
+        b = 2.0
+    else:
+        b = 3.0
+        a = y
+    return a * b
+
+
+@dataclass(frozen=True)
+class Spring:
+    stiffness: float
+    preload: float = 0.0
+
+    def force(self, d):
+        return self.preload + self.stiffness * max(d, 0.0)
+
+
+def optional_object(x, k):
+    spring = Spring(k) if k > 0.0 else None
+    if spring is None:
+        def law(d):
+            return -d
+    else:
+        law = spring.force
+    return law(x) + (spring.stiffness if spring is not None else 0.0)
+
+
+def comprehension_scope(x, y):
+    v = 10.0
+    parts = {name: v * 2.0 for name, v in (("a", x), ("b", y))}
+    return parts["a"] + parts["b"] + v
+
+
+def raises_with_message(x, y):
+    if not 0.0 <= x < math.inf:
+        raise ValueError(f"x must be finite and >= 0, got {x!r} (y = {y:.3g})")
+    return math.sqrt(x) + y
+
+
+def arrays(x, y):
+    z = np.array([x, y, x * y])
+    w = np.exp(-np.abs(z) / np.array([1.0, 2.0, 4.0]))
+    return float(np.sum(np.sign(z) * w))
+
+
+def while_loop(x, tolerance):
+    guess, count = max(x, 1.0), 0
+    while abs(guess * guess - x) > tolerance * x and count < 100:
+        guess = 0.5 * (guess + x / guess)
+        count += 1
+    return guess + 1e-3 * count
+
+
+CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
+         (branches_merge, [(2.0, 1.0), (-2.0, 1.0), (0.5, 1.0)]),
+         (optional_object, [(2e-6, 1e6), (2e-6, 0.0), (-1.0, 3.0)]),
+         (comprehension_scope, [(1.0, 2.0), (-3.0, 0.25)]),
+         (raises_with_message, [(4.0, 1.0), (0.0, -2.0)]),
+         (arrays, [(0.3, -2.0), (0.0, 5.0)]),
+         (while_loop, [(2.0, 1e-12), (1e6, 1e-9), (0.25, 1e-10)])]
+
+
+@pytest.mark.parametrize("function, inputs", CASES, ids=[c[0].__name__ for c in CASES])
+def test_compiled_function_returns_what_python_returns(function, inputs):
+    c = compiled(function, 2)
+    for args in inputs:
+        assert c(*args) == pytest.approx(function(*args), rel=1e-15, abs=0.0), args
+
+
+def test_raise_carries_the_python_message_word_for_word():
+    c = compiled(raises_with_message, 2)
+    for x, y in ((-1.0, 12345.678), (math.inf, 1e-7), (math.nan, 0.5)):
+        with pytest.raises(ValueError) as python:
+            raises_with_message(x, y)
+        with pytest.raises(ValueError) as native:
+            c(x, y)
+        assert str(native.value) == str(python.value)
+
+
+def test_float_repr_matches_python_on_random_and_edge_doubles():
+    repr_ = compiled(loop_carried, 2).repr
+    rng = np.random.default_rng(5)
+    samples = np.concatenate([rng.normal(size=300) * 10.0 ** rng.integers(-30, 30, 300),
+                              rng.integers(-10**6, 10**6, 50).astype(float),
+                              [0.0, -0.0, 1e16, 1e15, 1e-4, 1e-5, 0.1, 1 / 3, 5e-324,
+                               1.7976931348623157e308, math.inf, -math.inf, math.nan]])
+    for x in samples:
+        assert repr_(float(x)) == repr(float(x))
+
+
+def unsupported(x, y):
+    return [x, y].index(y)
+
+
+def type_changes_in_loop(x, n):
+    value = 0.0
+    for _ in range(int(n)):
+        value = Spring(x)
+    return x
+
+
+@pytest.mark.parametrize("function, words", [
+    (unsupported, f"test_translate.py:{unsupported.__code__.co_firstlineno + 1}: attribute index"),
+    (type_changes_in_loop, "changes from a run-time double to a Spring object in a loop")])
+def test_untranslatable_code_is_refused_naming_file_line_and_construct(function, words):
+    with pytest.raises(TranslationError, match=words):
+        compiled(function, 2)
