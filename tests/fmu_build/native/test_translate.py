@@ -122,7 +122,7 @@ def type_changes_in_loop(x, n):
     value = 0.0
     for _ in range(int(n)):
         value = Spring(x)
-    return x
+    return value
 
 
 @pytest.mark.parametrize("function, words", [
