@@ -13,10 +13,19 @@ import stat
 import sys
 import zipfile
 from contextlib import contextmanager
+from ctypes import byref
 from pathlib import Path
 
 import numpy as np
 import pytest
+from fmpy import calloc, free
+from fmpy.fmi2 import (
+    fmi2CallbackAllocateMemoryTYPE,
+    fmi2CallbackFreeMemoryTYPE,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+)
+from fmpy.logging import addLoggerProxy
 
 ORCHESTRATION = Path(__file__).resolve().parents[1] / "orchestration"
 #: the one setting of the real records' folder (emps-identification/, emps-validation/); no
@@ -150,3 +159,18 @@ def probe_scenario(folder: Path, fmu, fault: str = "none", stop: float = 0.01,
     for ``stop`` s at steps of ``step`` s, ``extra`` lines added to [experiment]."""
     return write_file(folder, PROBE_SCENARIO.format(fmu=fmu, fault=fault, stop=stop, step=step,
                                                     extra=extra), "probe.toml")
+
+
+def capturing_callbacks(messages: list):
+    """FMI callbacks whose logger appends (status, message) to ``messages``. Keep them as long as
+    the instance lives: fmpy's default callbacks log through one process-wide proxy, which
+    points at whatever logger another test installed last, freed or not."""
+    def logger(environment, instance, status, category, message):
+        messages.append((status, message.decode("utf-8", "replace")))
+
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = fmi2CallbackLoggerTYPE(logger)
+    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    addLoggerProxy(byref(callbacks))  # formats the variadic message before it reaches Python
+    return callbacks

@@ -14,16 +14,14 @@ import site
 import subprocess
 import sys
 from pathlib import Path
-from ctypes import byref
 
 import numpy as np
 import pytest
-from fmpy import calloc, extract, free, read_model_description, simulate_fmu
+from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
-from fmpy.logging import addLoggerProxy
+from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
+from support import capturing_callbacks
 
 from guideway_fmu.components import registry
 from guideway_fmu.physics.roller_guide.roller_law import OpposedRows
@@ -69,19 +67,6 @@ def hand_biharmonic_velocity(t):
 
 
 # -- driving an FMU by variable name -----------------------------------------------------------
-def _capturing_callbacks(messages):
-    """FMI callbacks whose logger appends (status, message) to ``messages``."""
-    def logger(environment, instance, status, category, message):
-        messages.append((status, message.decode("utf-8", "replace")))
-
-    callbacks = fmi2CallbackFunctions()
-    callbacks.logger = fmi2CallbackLoggerTYPE(logger)
-    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-    addLoggerProxy(byref(callbacks))  # formats the variadic message before it reaches Python
-    return callbacks
-
-
 class Slave:
     """One initialised co-simulation instance; variables addressed by name, log captured."""
 
@@ -91,7 +76,7 @@ class Slave:
         self.output_names = [v.name for v in md.modelVariables if v.causality == "output"]
         self.unzip_dir = extract(str(path))
         self.messages = []
-        self._callbacks = _capturing_callbacks(self.messages)
+        self._callbacks = capturing_callbacks(self.messages)
         self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=self.unzip_dir,
                              modelIdentifier=md.coSimulation.modelIdentifier,
                              instanceName=instance_name)
@@ -759,6 +744,7 @@ def test_ehl_film_integration_matches_tight_scipy_solution_of_the_array_physics(
     # at 2 mm/s: the FMU's Heun substeps against solve_ivp (DOP853, rtol 1e-11) of
     # four_rows.film_rates, the array functions (independent of the float kernel).
     from scipy.integrate import solve_ivp
+
     from guideway_fmu.physics.roller_guide import four_rows as gw
     y0, v, u, h, n = 1e-7, 2e-3, 0.29, 2e-6, 250
     contact = open_fmu("ContactEHL", y=y0, y_dot=v, u=0.05)
@@ -837,8 +823,8 @@ def test_feed_unit_fmu_under_a_central_vertical_load_hand_calculation(open_fmu):
     # F = 16 n k0 sin^2(45) w with k0 = 1.5 Q0 / delta_p the rest stiffness of one ball, plus
     # the turning of the preloaded lines (Q0 / L0 cos^2 45 per ball) with the angle change.
     # Ball: 3/16 in, f = 0.52, steel (2 / E' = 2 (1 - nu^2) / E); delta_p from Q0 = 20 N.
-    from scipy.special import ellipe, ellipk
     from scipy.optimize import brentq
+    from scipy.special import ellipe, ellipk
     d, f, q0, n = 4.7625e-3, 0.52, 20.0, 12
     curvature_sum = (4 - 1 / f) / d
     difference = 1 / (4 * f - 1)

@@ -8,6 +8,7 @@ import tempfile
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2OK, fmi2Terminated
+from support import capturing_callbacks
 
 
 class Driven:
@@ -21,8 +22,8 @@ class Driven:
         self.slave = FMU2Slave(guid=self.description.guid, unzipDirectory=self.folder,
                                modelIdentifier=self.description.coSimulation.modelIdentifier,
                                instanceName=name)
-        self.slave.instantiate(loggingOn=True, callbacks=None)
-        self.slave.fmi2CallbackLogger = None
+        self._callbacks = capturing_callbacks(self.messages)
+        self.slave.instantiate(loggingOn=True, callbacks=self._callbacks)
 
     def set(self, values: dict) -> None:
         for name, value in values.items():

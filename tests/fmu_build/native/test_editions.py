@@ -86,12 +86,10 @@ def test_bad_parameter_discards_the_step_as_terminated_naming_it_like_python(
     for edition, folder in (("native", native_dir), ("python", fmu_dir)):
         fmu = Driven(folder / f"{name}.fmu")
         try:
-            fmu.set(parameters)
-            fmu.slave.setupExperiment(startTime=0.0)
-            fmu.slave.enterInitializationMode()
-            with pytest.raises(FMICallException):
-                fmu.slave.exitInitializationMode()  # fmi2Error, as the Python edition
-            assert fmu.step(0.0, STEP) == fmi2Discard
+            fmu.start({}, {})
+            assert fmu.step(0.0, STEP) == fmi2OK
+            fmu.set(parameters)  # tunable: takes effect at the next step
+            assert fmu.step(STEP, STEP) == fmi2Discard
             assert fmu.terminated  # no shorter step cures a bad parameter
         finally:
             fmu.close()
@@ -99,6 +97,20 @@ def test_bad_parameter_discards_the_step_as_terminated_naming_it_like_python(
     assert words in said["native"]
     line = next(x for x in said["native"].splitlines() if words in x)
     assert line in said["python"].splitlines()  # the same sentence, word for word
+
+
+@pytest.mark.parametrize("name, parameters, words", BAD[:2])
+def test_bad_start_parameter_is_an_error_leaving_initialisation(name, parameters, words,
+                                                                native_dir, capfd):
+    fmu = Driven(native_dir / f"{name}.fmu")
+    fmu.set(parameters)
+    fmu.slave.setupExperiment(startTime=0.0)
+    fmu.slave.enterInitializationMode()
+    with pytest.raises(FMICallException) as raised:
+        fmu.slave.exitInitializationMode()
+    assert raised.value.status == 3  # fmi2Error, as the Python edition with error_patch
+    fmu.slave.freeInstance()  # after fmi2Error FMI allows little else
+    assert words in capfd.readouterr().err
 
 
 def test_bad_input_discards_naming_the_input_and_the_last_outputs_stay_readable(native_dir, capfd):
