@@ -26,7 +26,7 @@ from .intrinsics import table
 from .source import TranslationError
 from .statements import Statements
 from .translate import TranslatorCore, _is_object, from_python, func_of
-from .values import Array, Const, Dict, Obj, Scalar, Tuple
+from .values import Array, Const, Dict, Obj, Scalar, Tuple, literal
 
 _C_TYPES = {"Real": "double", "Integer": "long", "Boolean": "bool"}
 _TYPE_CODES = {"Real": "GW_REAL", "Integer": "GW_INTEGER", "Boolean": "GW_BOOLEAN"}
@@ -76,7 +76,7 @@ class Unit:
             unique = f"{name}_{k}"
         value = example.item() if isinstance(example, (np.generic, np.ndarray)) else example
         default = ("1" if value else "0") if ctype == "bool" else \
-            f"{int(value)}L" if ctype == "long" else _double(float(value))
+            f"{int(value)}L" if ctype == "long" else literal(float(value))
         self.fields.append((ctype, unique, default))
         return Scalar(ctype, f"s->{unique}", self.self)
 
@@ -184,8 +184,3 @@ class Unit:
             '#include "fmi2_slave.c"',
             "static const gw_variable gw_variables[] = {\n" + "\n".join(rows) + "\n};",
         ])
-
-
-def _double(value: float) -> str:
-    from .values import literal
-    return literal(value)

@@ -265,11 +265,6 @@ class Statements:
         self.emit("goto gw_fail;")
 
 
-def _leaves(value):
-    from .values import leaves
-    return leaves(value)
-
-
 def _load(node):
     copy = ast.parse(ast.unparse(node), mode="eval").body
     return ast.copy_location(copy, node)

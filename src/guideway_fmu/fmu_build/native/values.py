@@ -13,8 +13,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-C_TYPES = ("double", "long", "bool")
-
 
 @dataclass
 class Scalar:
