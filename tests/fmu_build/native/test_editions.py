@@ -13,6 +13,7 @@ from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import fmi2Discard, fmi2OK
 from fmpy.validation import validate_fmu
+from support import capturing_callbacks
 
 from guideway_fmu.components import registry
 from guideway_fmu.fmu_build.native.build import build_native
@@ -196,3 +197,49 @@ def test_every_component_is_native_python_only_with_a_reason_or_refused_by_name(
             continue
         with pytest.raises(TranslationError, match=name + r"|\.py:\d+: "):
             Unit(registry.component(name)).text  # noqa: B018 - refused, naming what and where
+
+
+def test_start_values_baked_into_the_model_description_are_where_both_editions_start(
+        native_dir, fmu_dir, tmp_path):
+    from guideway_fmu.fmi.archive import with_start_values
+    baked = {"mass": 4.0, "load_amplitude": 250.0, "F_ext": 10.0}
+    script = _script("VerticalDynamics", 10, seed=3)
+    rows = {}
+    for edition, folder in (("native", native_dir), ("python", fmu_dir)):
+        fmu = with_start_values(folder / "VerticalDynamics.fmu", tmp_path / f"{edition}.fmu", baked)
+        driven = Driven(fmu)
+        try:
+            assert {k: driven.slave.getReal([driven.refs[k].valueReference])[0]
+                    for k in baked} == baked
+        finally:
+            driven.close()
+        rows[edition] = run_script(fmu, {}, [{}] + script, STEP)
+    for a, b in zip(rows["python"], rows["native"], strict=True):
+        assert b == pytest.approx(a, rel=1e-13, abs=1e-300)
+    assert rows["native"][1]["y_ddot"] == pytest.approx(9.80665 + 10.0 / 4.0)  # hand calculation
+
+
+def test_a_start_value_not_of_its_type_refuses_the_instance_naming_variable_and_file(
+        native_dir, tmp_path, capfd):
+    from fmpy import extract
+    from fmpy.fmi2 import FMU2Slave
+
+    from guideway_fmu.fmi.archive import rewrite
+
+    def spoil(name, data):  # what a careless tool may write (fmpy itself refuses to read it)
+        if name == "modelDescription.xml":
+            start = data.index(b'start="', data.index(b'name="mass"')) + len('start="')
+            data = data[:start] + b"heavy" + data[data.index(b'"', start):]
+        return name, data
+
+    fmu = rewrite(native_dir / "VerticalDynamics.fmu", tmp_path / "spoilt.fmu", spoil)
+    described = read_model_description(native_dir / "VerticalDynamics.fmu")
+    slave = FMU2Slave(guid=described.guid, unzipDirectory=extract(fmu, tmp_path / "x"),
+                      modelIdentifier="VerticalDynamics", instanceName="spoilt")
+    logged = []
+    with pytest.raises(Exception, match="instantiate"):
+        slave.instantiate(callbacks=capturing_callbacks(logged))
+    err = capfd.readouterr().err
+    assert 'the start value "heavy" of mass is not of its type' in err
+    assert "modelDescription.xml" in err
+    assert any("heavy" in str(m) for m in logged)

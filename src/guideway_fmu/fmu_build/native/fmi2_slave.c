@@ -60,6 +60,8 @@ static void gw_report(gw_instance *c, fmi2Status status, const char *message) {
     }
 }
 
+#define GW_FIELD(c, v, T) ((T *)((char *)&(c)->state.self + (v)->offset))
+
 static const gw_variable *gw_find(fmi2ValueReference vr) {
     size_t i;
     for (i = 0; i < GW_N_VARIABLES; ++i)
@@ -129,32 +131,153 @@ static fmi2Status gw_evaluated(gw_instance *c) {
     return fmi2Error;
 }
 
+/* -- start values from the modelDescription --------------------------------------------
+ * As the pythonfmu edition does, an instance starts its parameters and inputs from the start
+ * values of the modelDescription.xml beside its resources folder (a tool or `export-ssp` may
+ * have changed them there), else from the values the unit was built with. */
+
+/* The file path of the modelDescription of the FMU whose resource URI is ``uri`` (file:///p,
+ * file:/p or a plain path, percent escapes decoded) in ``path``: 0, or 1 when there is none. */
+static int gw_description_path(const char *uri, char *path, size_t size) {
+    size_t n = 0;
+    if (!uri) return 1;
+    if (strncmp(uri, "file://", 7) == 0) uri += 7;
+    else if (strncmp(uri, "file:", 5) == 0) uri += 5;
+    if (uri[0] == '/' && uri[1] && uri[2] == ':') ++uri;  /* file:///C:/... */
+    for (; *uri && n + 1 < size; ++uri) {
+        unsigned code;
+        if (uri[0] == '%' && uri[1] && uri[2] && sscanf(uri + 1, "%2x", &code) == 1) {
+            path[n++] = (char)code;
+            uri += 2;
+        } else {
+            path[n++] = *uri;
+        }
+    }
+    while (n > 0 && (path[n - 1] == '/' || path[n - 1] == '\\')) --n;
+    while (n > 0 && path[n - 1] != '/' && path[n - 1] != '\\') --n;  /* drop "resources" */
+    path[n] = '\0';
+    if (n == 0 || n + sizeof "modelDescription.xml" > size) return 1;
+    strcat(path, "modelDescription.xml");
+    return 0;
+}
+
+/* The text of attribute ``name`` (name="...") in [from, to) into ``out``: 0, or 1 if absent. */
+static int gw_attribute(const char *from, const char *to, const char *name, char *out,
+                        size_t size) {
+    size_t length = strlen(name);
+    const char *p, *end;
+    for (p = from; p && p + length + 2 < to; ++p) {
+        if (strncmp(p, name, length) || p[length] != '=' || p[length + 1] != '"'
+            || (p > from && p[-1] != ' ' && p[-1] != '\n' && p[-1] != '\t')) continue;
+        p += length + 2;
+        end = memchr(p, '"', (size_t)(to - p));
+        if (!end || (size_t)(end - p) >= size) return 1;
+        memcpy(out, p, (size_t)(end - p));
+        out[end - p] = '\0';
+        return 0;
+    }
+    return 1;
+}
+
+/* Apply one start value (XML text) to the parameter or input ``v``: 0, or 1 if malformed. */
+static int gw_apply_start(gw_instance *c, const gw_variable *v, const char *text) {
+    char *end;
+    if (v->type == GW_REAL) {
+        double value = strtod(text, &end);
+        if (end == text || *end) return 1;
+        *GW_FIELD(c, v, double) = value;
+    } else if (v->type == GW_INTEGER) {
+        long value = strtol(text, &end, 10);
+        if (end == text || *end) return 1;
+        *GW_FIELD(c, v, long) = value;
+    } else {
+        if (strcmp(text, "true") && strcmp(text, "false") && strcmp(text, "1") && strcmp(text, "0"))
+            return 1;
+        *GW_FIELD(c, v, bool) = strcmp(text, "true") == 0 || strcmp(text, "1") == 0;
+    }
+    return 0;
+}
+
+/* The modelDescription's guid into ``guid`` (empty when the file cannot be read) and its start
+ * values applied to the instance: 0, or 1 with the reason in ``message`` (a start value that is
+ * not of its variable's type). Without the file the built-in values stay, as for the Python
+ * edition instantiated outside an FMU. */
+static int gw_read_description(gw_instance *c, const char *resources, char *guid, size_t guid_size,
+                               char *message, size_t size) {
+    char path[4096], text[128], name[256];
+    const char *at, *end;
+    char *xml;
+    long length;
+    FILE *file;
+    int failed = 0;
+    guid[0] = '\0';
+    if (gw_description_path(resources, path, sizeof path) || !(file = fopen(path, "rb")))
+        return 0;
+    if (fseek(file, 0, SEEK_END) || (length = ftell(file)) < 0 || fseek(file, 0, SEEK_SET)
+        || !(xml = (char *)malloc((size_t)length + 1))) {
+        fclose(file);
+        return 0;
+    }
+    xml[fread(xml, 1, (size_t)length, file)] = '\0';
+    fclose(file);
+    if ((at = strstr(xml, "<fmiModelDescription")) && (end = strchr(at, '>'))
+        && gw_attribute(at, end, "guid", guid, guid_size))
+        guid[0] = '\0';
+    for (at = strstr(xml, "<ScalarVariable"); at && !failed; at = strstr(end, "<ScalarVariable")) {
+        const gw_variable *v;
+        if (!(end = strstr(at, "</ScalarVariable>")) && !(end = strstr(at, "/>"))) break;
+        if (gw_attribute(at, end, "valueReference", text, sizeof text)) continue;
+        v = gw_find((fmi2ValueReference)strtoul(text, NULL, 10));
+        if (!v || v->causality == GW_OUTPUT || gw_attribute(at, end, "start", text, sizeof text))
+            continue;
+        if (gw_apply_start(c, v, text)) {
+            if (gw_attribute(at, end, "name", name, sizeof name)) strcpy(name, "?");
+            snprintf(message, size, "%s: the start value \"%s\" of %s is not of its type",
+                     path, text, name);
+            failed = 1;
+        }
+    }
+    free(xml);
+    return failed;
+}
+
 /* -- instance life -------------------------------------------------------------------- */
 const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
 const char *fmi2GetVersion(void) { return fmi2Version; }
 
+/* The guid a host passes must be the modelDescription's beside the resources (a tool or
+ * `export-ssp` that changes start values gives the copy a guid of its own), or this build's. */
 fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
                               fmi2String resources, const fmi2CallbackFunctions *callbacks,
                               fmi2Boolean visible, fmi2Boolean logging) {
     gw_instance *c;
-    (void)resources; (void)visible;
-    if (type != fmi2CoSimulation || !name || (guid && strcmp(guid, GW_GUID) != 0)) {
-        fprintf(stderr, "%s %s: %s\n", GW_CLASS, name ? name : "?", type != fmi2CoSimulation
-                ? "only co-simulation is provided" : "the GUID is not this FMU's");
-        if (callbacks && callbacks->logger)
-            callbacks->logger(callbacks->componentEnvironment, name ? name : "?", fmi2Error,
-                              "logStatusError", "the FMU type or GUID does not match");
+    char described[128], reason[GW_MESSAGE_SIZE];
+    const char *why = NULL;
+    (void)visible;
+    if (type != fmi2CoSimulation || !name) {
+        why = "only co-simulation is provided, to a named instance";
+    } else if (!(c = (gw_instance *)calloc(1, sizeof *c))
+               || !(c->instance_name = (char *)malloc(strlen(name) + 1))) {
+        free(c);
         return NULL;
+    } else {
+        strcpy(c->instance_name, name);
+        if (callbacks) c->callbacks = *callbacks;
+        c->logging = logging;
+        gw_defaults(&c->state.self);
+        if (gw_read_description(c, resources, described, sizeof described, reason, sizeof reason))
+            why = reason;
+        else if (guid && strcmp(guid, described[0] ? described : GW_GUID) != 0)
+            why = "the GUID is not this FMU's";
+        if (!why) return c;
+        free(c->instance_name);
+        free(c);
     }
-    c = (gw_instance *)calloc(1, sizeof *c);
-    if (!c) return NULL;
-    c->instance_name = (char *)malloc(strlen(name) + 1);
-    if (!c->instance_name) { free(c); return NULL; }
-    strcpy(c->instance_name, name);
-    if (callbacks) c->callbacks = *callbacks;
-    c->logging = logging;
-    gw_defaults(&c->state.self);
-    return c;
+    fprintf(stderr, "%s %s: %s\n", GW_CLASS, name ? name : "?", why);
+    if (callbacks && callbacks->logger)
+        callbacks->logger(callbacks->componentEnvironment, name ? name : "?", fmi2Error,
+                          "logStatusError", "%s", why);
+    return NULL;
 }
 
 void fmi2FreeInstance(fmi2Component component) {
@@ -211,7 +334,6 @@ fmi2Status fmi2Reset(fmi2Component component) {
 }
 
 /* -- values --------------------------------------------------------------------------- */
-#define GW_FIELD(c, v, T) ((T *)((char *)&(c)->state.self + (v)->offset))
 
 static fmi2Status gw_get(gw_instance *c, const fmi2ValueReference vr[], size_t n, char type,
                          void *values) {
