@@ -281,7 +281,7 @@ def test_sweep_with_failed_points_exits_2_after_its_table(tmp_path, capsys, monk
     import contextlib
     from guideway_fmu.sweep import run, sweep_file
     table = str(tmp_path / "o" / "results.csv")
-    monkeypatch.setattr(sweep_file, "load", lambda path, fmus: None)
+    monkeypatch.setattr(sweep_file, "load", lambda path, fmus, edition: None)
     monkeypatch.setattr(run, "dask_client", lambda workers, scheduler: contextlib.nullcontext())
     monkeypatch.setattr(run, "run_sweep", lambda *args, **kwargs: run.Outcome(
         points=9, skipped=0, ok=7, failed=2, retried=2, files=[table]))

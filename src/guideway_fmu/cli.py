@@ -94,20 +94,32 @@ def _written(folder: Path, since: float) -> list[str]:
     return sorted(str(p) for p in folder.rglob("*") if p.is_file() and p.stat().st_mtime >= since)
 
 
+EDITIONS = ("python", "native")  # fmu_build.build.EDITIONS, named here so --help loads nothing
+
+
+def _edition_option(p, what: str) -> None:
+    p.add_argument("--edition", choices=EDITIONS, default="python",
+                   help=f"{what}: python (pythonfmu, runs in the host's Python; the default) or "
+                        "native (compiled C, no Python inside, for the components that have a "
+                        "native edition; the others stay python)")
+
+
 def _fmus_option(p, default_text: str) -> None:
     p.add_argument("--fmus", type=Path, default=None,
                    help=f"take every FMU by file name from this folder ({default_text})")
+    _edition_option(p, "the FMU cache's edition, without --fmus")
 
 
 # -- building and hosts ----------------------------------------------------------------------
 def _build_arguments(p) -> None:
     p.add_argument("--out", type=Path, default=Path("fmus"), help="output folder (default fmus/)")
     p.add_argument("names", nargs="*", help="FMUs to build (default: all)")
+    _edition_option(p, "how the FMUs run, under the same file names")
 
 
 def _build(args) -> int:
     from .fmu_build.build import build
-    for path in build(args.out, args.names or None):
+    for path in build(args.out, args.names or None, args.edition):
         print(path)
     return 0
 
@@ -152,7 +164,7 @@ def _load(args):
     from . import scenarios
     path = scenarios.find(args.scenario)  # a wrong name is told before the library loads
     from .cosim import system
-    s = system.load(path, scenarios.fmu_folder(path, args.fmus))
+    s = system.load(path, scenarios.fmu_folder(path, args.fmus, args.edition))
     changes = {k: getattr(args, k, None) for k in ("stop", "step", "algorithm", "step_timeout")
                if getattr(args, k, None) is not None}
     return s.with_changes(**changes) if changes else s
@@ -266,7 +278,7 @@ def _sweep_arguments(p) -> None:
 def _sweep(args) -> int:
     _existing(args.sweep, "sweep file")
     from .sweep import sweep_file
-    spec = sweep_file.load(args.sweep, args.fmus)  # a bad file is told before dask loads
+    spec = sweep_file.load(args.sweep, args.fmus, args.edition)  # told before dask loads
     from .sweep import run
     with run.dask_client(args.workers, args.scheduler) as client:
         outcome = run.run_sweep(spec, args.out, client, args.resume, progress=_progress(args))

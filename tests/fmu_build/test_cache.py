@@ -32,8 +32,8 @@ def test_the_cache_is_the_setting_else_the_users_cache_folder(tmp_path, monkeypa
 
 
 def test_an_unknown_edition_is_refused_naming_the_known_ones():
-    with pytest.raises(ValueError, match="unknown FMU edition 'native'; known: python"):
-        cache.folder("native")
+    with pytest.raises(ValueError, match="unknown FMU edition 'wasm'; known: python, native"):
+        cache.folder("wasm")
 
 
 def test_a_cache_that_cannot_be_written_is_named_with_the_ways_around(tmp_path, monkeypatch):

@@ -89,15 +89,53 @@ def code_hash(files: list[Path], data: dict[str, Path] | None = None) -> str:
     return digest.hexdigest()[:10]
 
 
-def build(out_dir: str | Path = "fmus", names: list[str] | None = None) -> list[Path]:
-    """Build the named FMUs (default: all, the extensions included) into ``out_dir`` and write
-    its README.md (every FMU in the folder)."""
+#: how an FMU runs: in the host's Python (pythonfmu), or compiled C without Python
+#: (fmu_build/native) where the component has a native edition
+EDITIONS = ("python", "native")
+
+
+def edition_of(name: str, edition: str) -> str:
+    """The edition the FMU ``name`` is built in when ``edition`` is asked for: "native" for a
+    component with a native edition (``native.COMPONENTS``), else "python". ValueError naming the
+    editions for an unknown one."""
+    if edition not in EDITIONS:
+        raise ValueError(f"unknown FMU edition {edition!r}; known: {', '.join(EDITIONS)}")
+    if edition == "native":
+        from .native import COMPONENTS
+        if name in COMPONENTS:
+            return "native"
+    return "python"
+
+
+def fmu_hash(cls: type, edition: str = "python") -> str:
+    """The code hash of the FMU of ``cls`` in ``edition`` (:func:`code_hash`; a native FMU's
+    covers the translator and the C runtime too)."""
+    if edition_of(cls.__name__, edition) == "native":
+        from .native.build import native_hash
+        return native_hash(cls)
+    return code_hash(shipped_files(cls))
+
+
+def build(out_dir: str | Path = "fmus", names: list[str] | None = None,
+          edition: str = "python") -> list[Path]:
+    """Build the named FMUs (default: all, the extensions included) in ``edition`` into
+    ``out_dir`` and write its README.md (every FMU in the folder)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     classes = [registry.component(n) for n in (registry.names() if names is None else names)]
-    built = pack([(cls, out_dir / f"{cls.__name__}.fmu") for cls in classes])
+    built = pack_edition([(cls, out_dir / f"{cls.__name__}.fmu") for cls in classes], edition)
     write_readme(out_dir, sorted(out_dir.glob("*.fmu")))
     return built
+
+
+def pack_edition(slaves: list[tuple[type, Path]], edition: str) -> list[Path]:
+    """Build an FMU of each (component class, destination file) in ``edition``
+    (:func:`edition_of` decides per class), in the order given."""
+    native = {cls for cls, _ in slaves if edition_of(cls.__name__, edition) == "native"}
+    python = iter(pack([(cls, dest) for cls, dest in slaves if cls not in native]))
+    if native:
+        from .native.build import build_native
+    return [build_native(cls, dest) if cls in native else next(python) for cls, dest in slaves]
 
 
 def pack(slaves: list[tuple[type, Path]], data: dict[str, Path] | None = None,
@@ -162,50 +200,74 @@ def _finish(fmu: Path, package: str) -> Path:
 
 
 def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:
-    """Build the FMUs among ``names`` (default: all) that ``out_dir`` lacks or holds built from
-    other code than this package's (their slave script's hash differs: the package changed since
-    they were built); an FMU of that name that this build did not make (a user's replacement) is
-    left alone. Returns out_dir."""
+    """Build the FMUs among ``names`` (default: all) that ``out_dir`` lacks (in the python
+    edition) or holds built from other code than this package's (in the edition they have: their
+    code hash differs, the package changed since they were built); an FMU of that name that this
+    build did not make (a user's replacement) is left alone. Returns out_dir."""
     out_dir = Path(out_dir)
     wanted = registry.names() if names is None else list(dict.fromkeys(names))
-    stale = [n for n in wanted if built_tag(out_dir / f"{n}.fmu") not in (
-        code_hash(shipped_files(registry.component(n))), FOREIGN)]
-    for name in stale:
-        if (out_dir / f"{name}.fmu").is_file():
-            print(f"rebuilding {out_dir / name}.fmu: it was built from other code than this "
-                  "package's", file=sys.stderr)
-    if stale:
-        build(out_dir, stale)
+    stale: dict[str, list[str]] = {}
+    for name in wanted:
+        found = built_edition(out_dir / f"{name}.fmu")
+        edition = found[0] if found else "python"
+        if found is None or found[1] not in (fmu_hash(registry.component(name), edition), FOREIGN):
+            stale.setdefault(edition, []).append(name)
+            if found:
+                print(f"rebuilding {out_dir / name}.fmu ({edition} edition): it was built from "
+                      "other code than this package's", file=sys.stderr)
+    for edition, names_ in stale.items():
+        build(out_dir, names_, edition)
     return out_dir
 
 
 FOREIGN = "foreign"  # built_tag of an FMU this build did not make
+NATIVE_TOOL = re.compile(r'generationTool="guideway-fmu native edition ([0-9a-f]{10})"')
 
 
-def built_tag(fmu: Path) -> str | None:
-    """The code hash an FMU of this build carries (its slave script ``resources/<name>_<hash>.py``),
-    None when the file is missing, FOREIGN when it is an FMU of another origin."""
+def built_edition(fmu: Path) -> tuple[str, str] | None:
+    """(edition, code hash) of an FMU this build made: python (its slave script
+    ``resources/<name>_<hash>.py``) or native (the hash in its modelDescription's
+    generationTool); ("python", FOREIGN) for an FMU of another origin; None when the file is
+    missing."""
     if not fmu.is_file():
         return None
     script = re.compile(rf"resources/{re.escape(fmu.stem)}_([0-9a-f]{{10}})\.py")
     try:
         with zipfile.ZipFile(fmu) as archive:
             tags = [m.group(1) for m in map(script.fullmatch, archive.namelist()) if m]
+            if len(tags) == 1:
+                return "python", tags[0]
+            if not tags and "modelDescription.xml" in archive.namelist():
+                native = NATIVE_TOOL.search(archive.read("modelDescription.xml").decode(
+                    "utf-8", "replace"))
+                if native:
+                    return "native", native.group(1)
     except zipfile.BadZipFile:
-        return FOREIGN
-    return tags[0] if len(tags) == 1 else FOREIGN
+        pass
+    return "python", FOREIGN
+
+
+def built_tag(fmu: Path) -> str | None:
+    """The code hash an FMU of this build carries (:func:`built_edition`), None when the file is
+    missing, FOREIGN when it is an FMU of another origin."""
+    found = built_edition(fmu)
+    return found and found[1]
 
 
 def write_readme(out_dir: Path, fmus: list[Path]) -> Path:
     """Write ``out_dir/README.md``: every FMU's variables with causality, unit, start and meaning."""
     lines = ["# FMUs", "",
              "Generated by `guideway-fmu build` from the FMUs' modelDescription.xml; do not edit.",
-             "All FMUs are FMI 2.0 co-simulation, built with pythonfmu: they run in the host's Python",
-             "interpreter, which must provide numpy and scipy (a C host needs the environment",
-             "`guideway-fmu host-env` prints).", ""]
+             "All FMUs are FMI 2.0 co-simulation. An FMU of the python edition (pythonfmu) runs in",
+             "the host's Python interpreter, which must provide numpy and scipy (a C host needs the",
+             "environment `guideway-fmu host-env` prints); one of the native edition is compiled C",
+             "and needs nothing but its binary for the host's platform.", ""]
     for path in fmus:
         md = read_model_description(str(path))
-        lines += [f"## {md.modelName}", "", md.description or "", "",
+        found = built_edition(path)
+        edition = ("another origin" if not found or found[1] == FOREIGN
+                   else f"{found[0]} edition")
+        lines += [f"## {md.modelName}", "", md.description or "", "", f"Built: {edition}.", "",
                   "| variable | causality | type | unit | start | description |",
                   "| --- | --- | --- | --- | --- | --- |"]
         order = {"parameter": 0, "input": 1, "output": 2}

@@ -5,13 +5,17 @@ The cache folder is ``GUIDEWAY_FMU_CACHE`` when set, else the user's cache folde
 (``XDG_CACHE_HOME`` or ``~/.cache`` on Linux, ``~/Library/Caches`` on macOS, ``%LOCALAPPDATA%``
 on Windows) + ``guideway-fmu``; never the current folder unless told so. In it::
 
-    <edition>/<FMU>-<code hash>.fmu        one FMU, built once (build.code_hash: its code and
-                                           the code that packs it)
+    <edition>/<FMU>-<code hash>.fmu        one FMU, built once (build.fmu_hash: its code and
+                                           the code that packs it); a native set takes the
+                                           python edition's file of a component without a
+                                           native edition
     <edition>/sets/<set hash>/<FMU>.fmu    every FMU of one state of the package under its own
                                            name (hard links to the above) and README.md: the
                                            folder the commands take FMUs from by file name
 
-The edition is how an FMU runs: today "python" (pythonfmu, in the host's Python). Builds happen
+The edition is how an FMU runs (fmu_build.build.EDITIONS): "python" (pythonfmu, in the host's
+Python) or "native" (compiled C where the component has a native edition, python elsewhere: a
+native set holds every FMU, so a scenario runs from it unchanged). Builds happen
 under a lock on the edition's folder, and a set folder is made beside and renamed into place, so
 processes that start together build each FMU once and never see a folder half made. Anything in
 the cache may be deleted; what is missing is built again.
@@ -30,7 +34,6 @@ from ..components import registry
 from . import build
 
 ENVIRONMENT = "GUIDEWAY_FMU_CACHE"  # the setting that moves the cache
-EDITIONS = ("python",)
 
 
 def root() -> Path:
@@ -53,10 +56,8 @@ def folder(edition: str = "python") -> Path:
     """The cache's folder of every FMU of this package as its code stands, in ``edition``,
     building what the cache lacks. ValueError for an unknown edition; OSError naming the cache
     folder when it cannot be written."""
-    if edition not in EDITIONS:
-        raise ValueError(f"unknown FMU edition {edition!r}; known: {', '.join(EDITIONS)}")
-    hashes = {n: build.code_hash(build.shipped_files(registry.component(n)))
-              for n in registry.names()}
+    build.edition_of("", edition)  # an unknown edition is refused before anything is built
+    hashes = {n: build.fmu_hash(registry.component(n), edition) for n in registry.names()}
     base = root() / edition
     done = base / "sets" / hashlib.sha256(
         "\n".join(f"{n} {h}" for n, h in hashes.items()).encode()).hexdigest()[:10]
@@ -70,10 +71,12 @@ def folder(edition: str = "python") -> Path:
     with _locked(base / "lock"), tempfile.TemporaryDirectory(prefix=".new-", dir=base) as tmp:
         if _complete(done, hashes):  # another process made it while this one waited
             return done
-        stored = {n: base / f"{n}-{h}.fmu" for n, h in hashes.items()}
+        stored = {n: root() / build.edition_of(n, edition) / f"{n}-{h}.fmu"
+                  for n, h in hashes.items()}
         missing = [(registry.component(n), Path(tmp) / f"{n}.fmu")
                    for n, path in stored.items() if not path.is_file()]
-        for fmu in build.pack(missing) if missing else []:
+        for fmu in build.pack_edition(missing, edition) if missing else []:
+            stored[fmu.stem].parent.mkdir(parents=True, exist_ok=True)
             os.replace(fmu, stored[fmu.stem])
         made = Path(tmp) / "set"
         made.mkdir()

@@ -92,13 +92,13 @@ def is_shipped(path: Path) -> bool:
     return Path(path).resolve().parent == FOLDER
 
 
-def fmu_folder(path: Path, fmus: str | Path | None) -> Path | None:
+def fmu_folder(path: Path, fmus: str | Path | None, edition: str = "python") -> Path | None:
     """The FMU folder the scenario file ``path`` runs with: ``fmus`` when given, the FMU
-    cache's (built where missing) for a shipped scenario, else None (the FMU paths in the
-    file)."""
+    cache's set of ``edition`` (built where missing) for a shipped scenario, else None (the FMU
+    paths in the file)."""
     if fmus is not None:
         return Path(fmus)
     if is_shipped(path):
         from ..fmu_build import cache
-        return cache.folder()
+        return cache.folder(edition)
     return None

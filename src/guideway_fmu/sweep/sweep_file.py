@@ -42,15 +42,15 @@ def nested(point: dict) -> dict[str, dict]:
     return out
 
 
-def load(path: str | Path, fmu_dir: str | Path | None = None) -> Sweep:
+def load(path: str | Path, fmu_dir: str | Path | None = None, edition: str = "python") -> Sweep:
     """Read and check a sweep file. Its ``scenario`` is a path relative to the file or a shipped
-    scenario's name; FMUs as for ``guideway-fmu run`` (``fmu_dir``, or the FMU cache's for a
-    shipped one)."""
+    scenario's name; FMUs as for ``guideway-fmu run`` (``fmu_dir``, or the FMU cache's set of
+    ``edition`` for a shipped one)."""
     path = Path(path)
     src = str(path)
     top = TomlTable(src, "top level", read_toml(path, "the sweep file"))
     top.unknown(("scenario", "description", "experiment", "design", "outputs"))
-    system = _scenario(top, path, fmu_dir)
+    system = _scenario(top, path, fmu_dir, edition)
     table = TomlTable(src, "design", top.get("design", dict, required=True))
     kind = table.get("kind", str, required=True)
     if kind not in KINDS:
@@ -65,14 +65,14 @@ def load(path: str | Path, fmu_dir: str | Path | None = None) -> Sweep:
     return Sweep(path, system, kind, tuple(points[0]), tuple(points), ids, outputs)
 
 
-def _scenario(top: TomlTable, path: Path, fmu_dir) -> System:
+def _scenario(top: TomlTable, path: Path, fmu_dir, edition: str) -> System:
     name = top.get("scenario", str, required=True)
     beside = path.parent / name
     try:
         scenario = beside if beside.is_file() else scenarios.find(name)
     except ValueError as exc:
         raise top.error("scenario", str(exc)) from None
-    system = load_scenario(scenario, scenarios.fmu_folder(scenario, fmu_dir))
+    system = load_scenario(scenario, scenarios.fmu_folder(scenario, fmu_dir, edition))
     table = TomlTable(top.source, "experiment", top.get("experiment", dict, {}))
     table.unknown(Experiment.__dataclass_fields__)
     changes = {k: table.get(k, type(getattr(system.experiment, k))) for k in table.data}

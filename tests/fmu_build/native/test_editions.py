@@ -243,3 +243,72 @@ def test_a_start_value_not_of_its_type_refuses_the_instance_naming_variable_and_
     assert 'the start value "heavy" of mass is not of its type' in err
     assert "modelDescription.xml" in err
     assert any("heavy" in str(m) for m in logged)
+
+
+def test_build_edition_native_writes_native_fmus_under_the_same_names_and_python_for_the_rest(
+        tmp_path, capsys):
+    from guideway_fmu import cli
+    from guideway_fmu.fmu_build import build
+
+    assert cli.EDITIONS == build.EDITIONS
+    assert cli.main(["build", "--edition", "native", "--out", str(tmp_path),
+                     "FrictionCoulomb", "FrictionMixedEHL"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "FrictionCoulomb.fmu", "FrictionMixedEHL.fmu", "README.md"]
+    native = build.built_edition(tmp_path / "FrictionCoulomb.fmu")
+    assert native == ("native", build.fmu_hash(registry.component("FrictionCoulomb"), "native"))
+    assert build.built_edition(tmp_path / "FrictionMixedEHL.fmu")[0] == "python"  # none native
+    readme = (tmp_path / "README.md").read_text()
+    assert "Built: native edition." in readme and "Built: python edition." in readme
+    with pytest.raises(SystemExit):
+        cli.main(["build", "--edition", "wasm", "--out", str(tmp_path)])
+    assert "invalid choice: 'wasm'" in capsys.readouterr().err
+
+
+def test_ensure_rebuilds_a_native_fmu_of_other_code_in_the_native_edition(native_dir, tmp_path):
+    import shutil
+
+    from guideway_fmu.fmi.archive import rewrite
+    from guideway_fmu.fmu_build import build
+
+    fmu = tmp_path / "FrictionDahl.fmu"
+    shutil.copy2(native_dir / "FrictionDahl.fmu", fmu)
+    current = build.built_tag(fmu)
+    rewrite(fmu, fmu, lambda n, d: (n, d.replace(current.encode(), b"0000000000")))
+    assert build.built_edition(fmu) == ("native", "0000000000")
+    build.ensure(tmp_path, ["FrictionDahl"])
+    assert build.built_edition(fmu) == ("native", current)
+
+
+def test_the_caches_native_set_holds_every_fmu_native_where_it_can_be(fmu_dir):
+    import os
+
+    from guideway_fmu.fmu_build import build, cache
+    from guideway_fmu.fmu_build.native import COMPONENTS
+
+    folder = cache.folder("native")
+    assert sorted(p.name for p in folder.glob("*.fmu")) == sorted(p.name for p in fmu_dir.glob("*.fmu"))
+    for fmu in folder.glob("*.fmu"):
+        edition, _ = build.built_edition(fmu)
+        assert edition == ("native" if fmu.stem in COMPONENTS else "python"), fmu.name
+        if edition == "python":  # the python set's very file
+            assert os.path.samefile(fmu, fmu_dir / fmu.name)
+
+
+def test_a_shipped_scenario_runs_from_the_native_set_with_the_python_sets_results(
+        fmu_dir, tmp_path, capsys):
+    import json
+
+    from guideway_fmu import cli
+
+    results = {}
+    for edition in ("python", "native"):
+        out = tmp_path / edition
+        assert cli.main(["run", "soleimanian2020_9000N_4500Hz_dry", "--stop", "4e-4", "--out",
+                         str(out), "--edition", edition, "--no-progress"]) == 0
+        json.loads(capsys.readouterr().out)
+        results[edition] = np.genfromtxt(out / "results.csv", delimiter=",", names=True)
+    python, native = results["python"], results["native"]
+    assert native.dtype.names == python.dtype.names and len(native) == len(python) > 50
+    for column in python.dtype.names:
+        assert native[column] == pytest.approx(python[column], rel=1e-12, abs=1e-18), column

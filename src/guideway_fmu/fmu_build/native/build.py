@@ -19,6 +19,7 @@ from xml.etree import ElementTree
 
 import fmpy
 
+from ..build import code_hash, shipped_files
 from .component import Unit
 
 HERE = Path(__file__).resolve().parent
@@ -60,12 +61,20 @@ def compile_unit(unit: Path, library: Path) -> Path:
     return library
 
 
+def native_hash(cls) -> str:
+    """The code hash of the native FMU of ``cls``: its Python definition, the translator and
+    the C runtime (fmu_build.build.code_hash)."""
+    return code_hash(sorted({*shipped_files(cls), *HERE.glob("*.py"),
+                             *(HERE / name for name in RUNTIME)}))
+
+
 def model_description(cls, guid: str) -> bytes:
-    """The Python edition's modelDescription with the native edition's capabilities."""
+    """The Python edition's modelDescription with the native edition's capabilities; the
+    generationTool names the code hash (fmu_build.build.built_edition reads it)."""
     example = cls(instance_name="native", resources=None)
     root = example.to_xml()
     root.set("guid", f"{{{guid}}}")
-    root.set("generationTool", "guideway-fmu native edition (fmu_build/native)")
+    root.set("generationTool", f"guideway-fmu native edition {native_hash(cls)}")
     cosim = root.find("CoSimulation")
     cosim.attrib.update(CAPABILITIES)
     cosim.set("modelIdentifier", cls.__name__)
