@@ -45,6 +45,10 @@ from .runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fm
 from .units import BASE_UNITS
 
 
+#: the refusal of a String parameter's value outside its choices (the native edition says it too)
+CHOICE = "parameter {name} must be one of {choices}, got {value!r}"
+
+
 class GuidewaySlave(Fmi2Slave):
     """Base class: typed variable registration, checking, lazy outputs and full state save."""
 
@@ -70,6 +74,7 @@ class GuidewaySlave(Fmi2Slave):
         self._input_refs: dict[int, str] = {}  # value reference -> name, Real inputs
         self._output_refs: dict[int, str] = {}  # value reference -> name, outputs
         self._depends: dict[str, tuple[str, ...]] = {}
+        self._choices: dict[str, tuple[str, ...]] = {}  # String parameter -> its values
         self._outputs: dict[str, float] | None = None
         self._last_valid: dict[str, float] = {}
         self._model = None
@@ -80,10 +85,15 @@ class GuidewaySlave(Fmi2Slave):
         self._described = _described_starts(self.resources)
 
     # -- registration -------------------------------------------------------------------
-    def parameter(self, name: str, start, unit: str | None, description: str) -> None:
+    def parameter(self, name: str, start, unit: str | None, description: str,
+                  choices: tuple[str, ...] | None = None) -> None:
         """A tunable parameter: Real (with ``unit``), Boolean (bool start), Integer (int start) or
-        String (str start); the modelDescription's start value replaces ``start`` where there is one."""
+        String (str start); the modelDescription's start value replaces ``start`` where there is one.
+        ``choices``: a String parameter that names a law takes one of these values (checked
+        before the model is built; the native edition translates each law)."""
         start = self._start(name, start)
+        if choices is not None:
+            self._choices[name] = tuple(choices)
         setattr(self, name, start)
         kind = (String if isinstance(start, str) else Boolean if isinstance(start, bool)
                 else Integer if isinstance(start, int) else Real)
@@ -183,8 +193,16 @@ class GuidewaySlave(Fmi2Slave):
         """Set the internal state from parameters and inputs when initialization mode ends."""
 
     # -- FMI calls ----------------------------------------------------------------------
+    def choices(self, name: str) -> tuple[str, ...] | None:
+        """The values the String parameter ``name`` chooses among, None when it is free text."""
+        return self._choices.get(name)
+
     def model(self):
         if self._model is None:
+            for name, choices in self._choices.items():
+                if getattr(self, name) not in choices:
+                    raise ValueError(CHOICE.format(name=name, choices=choices,
+                                                   value=getattr(self, name)))
             self._model = self.build_model()
         return self._model
 

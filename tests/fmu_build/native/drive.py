@@ -32,6 +32,8 @@ class Driven:
                 self.slave.setReal([v.valueReference], [float(value)])
             elif v.type == "Integer":
                 self.slave.setInteger([v.valueReference], [int(value)])
+            elif v.type == "String":
+                self.slave.setString([v.valueReference], [value])
             else:
                 self.slave.setBoolean([v.valueReference], [bool(value)])
 

@@ -28,6 +28,7 @@ NATIVE = {
     "ContactDryHertz": {"y": (-2e-6, 2e-6), "y_dot": (-1e-3, 1e-3), "u": (-0.2, 0.2)},
     "VerticalDynamics": {"F_contact": (-5e3, 5e3), "F_ext": (-100.0, 100.0),
                          "K_contact": (0.0, 1e9), "C_contact": (0.0, 1e3)},
+    "FeedKinematics": {"u_cmd": (-0.2, 0.2)},
 }
 STEP = 1e-4  # s
 
@@ -312,3 +313,51 @@ def test_a_shipped_scenario_runs_from_the_native_set_with_the_python_sets_result
     assert native.dtype.names == python.dtype.names and len(native) == len(python) > 50
     for column in python.dtype.names:
         assert native[column] == pytest.approx(python[column], rel=1e-12, abs=1e-18), column
+
+
+FEEDS = {"biharmonic": {"frequency": 3.0}, "oscillating": {"mean_velocity": 0.05},
+         "constant": {"velocity": -0.02}, "trapezoid": {"distance": 0.01, "t_start": 1e-3},
+         "input": {}}
+
+
+@pytest.mark.parametrize("profile", FEEDS)
+def test_every_feed_profile_a_string_parameter_chooses_runs_natively_as_in_python(
+        profile, native_dir, fmu_dir):
+    from guideway_fmu.physics.rigs.feed_motion import PROFILES
+    assert set(FEEDS) == set(PROFILES) - {"table", "replay"}  # these two read a file
+    script = _script("FeedKinematics", 60, seed=11)
+    parameters = {"profile": profile, **FEEDS[profile]}
+    python = run_script(fmu_dir / "FeedKinematics.fmu", parameters, script, STEP)
+    native = run_script(native_dir / "FeedKinematics.fmu", parameters, script, STEP)
+    assert len({r["x"] for r in native}) > 5  # the feed moves
+    for a, b in zip(python, native, strict=True):
+        assert b == pytest.approx(a, rel=1e-13, abs=1e-300)
+
+
+@pytest.mark.parametrize("profile, words", [
+    ("zigzag", "parameter profile must be one of ('biharmonic', 'oscillating', 'constant', "
+               "'trapezoid', 'table', 'replay', 'input'), got 'zigzag'"),
+    ("table", "profile 'table' is not in the native edition of FeedKinematics (parameter "
+              "table_file must name a CSV file when profile is 'table'); the python edition has it")])
+def test_a_profile_outside_the_choices_or_not_translated_is_refused_by_name(
+        profile, words, native_dir, fmu_dir, capfd):
+    fmu = Driven(native_dir / "FeedKinematics.fmu")
+    try:
+        fmu.start({}, {})
+        assert fmu.step(0.0, STEP) == fmi2OK
+        fmu.set({"profile": profile})
+        assert fmu.step(STEP, STEP) == fmi2Discard and fmu.terminated
+        assert fmu.slave.getString([fmu.refs["profile"].valueReference]) == [profile.encode()]
+    finally:
+        fmu.close()
+    said = capfd.readouterr().err
+    assert words in said
+    if profile == "zigzag":  # the Python edition's sentence, word for word
+        python = Driven(fmu_dir / "FeedKinematics.fmu")
+        try:
+            python.start({}, {})
+            python.set({"profile": profile})
+            assert python.step(0.0, STEP) == fmi2Discard
+        finally:
+            python.close()
+        assert words in capfd.readouterr().err

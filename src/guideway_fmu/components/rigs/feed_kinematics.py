@@ -19,7 +19,8 @@ class FeedKinematics(GuidewaySlave):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         bi, osc, tr = fp.BiHarmonic(), fp.Oscillating(), fp.Trapezoid()
-        self.parameter("profile", "biharmonic", None, f"feed profile, one of {fp.PROFILES}")
+        self.parameter("profile", "biharmonic", None, f"feed profile, one of {fp.PROFILES}",
+                       choices=fp.PROFILES)
         self.parameter("frequency", bi.frequency, "Hz", "feed frequency f (biharmonic, oscillating)")
         self.parameter("amplitude1", bi.amplitude1, "m/s", "biharmonic: amplitude A1 at f (eq. 1a)")
         self.parameter("amplitude2", bi.amplitude2, "m/s", "biharmonic: amplitude A2 at 3f (eq. 1a)")

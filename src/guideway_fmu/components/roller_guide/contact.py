@@ -90,7 +90,8 @@ class ContactEHL(_RollerContact):
         self.parameter("e_reduced", c.e_reduced, "Pa", "reduced modulus E'")
         self.parameter("viscosity", c.viscosity, "Pa.s", "lubricant viscosity at ambient pressure mu0")
         self.parameter("pressure_viscosity", c.pressure_viscosity, "1/Pa", "pressure-viscosity coefficient alpha")
-        self.parameter("film_model", c.model, None, f"film law, one of {film.FILM_MODELS}")
+        self.parameter("film_model", c.model, None, f"film law, one of {film.FILM_MODELS}",
+                       choices=film.FILM_MODELS)
         self.films = (0.0, 0.0)  # m, h_upper and h_lower of the extrapolated film
         self.previous_inputs = [0.0, 0.0]  # y [m], y_dot [m/s] given before the last step
 

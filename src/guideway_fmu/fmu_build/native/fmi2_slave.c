@@ -22,7 +22,7 @@
 #include <stddef.h>
 #include "fmi2Functions.h"
 
-enum { GW_REAL = 'R', GW_INTEGER = 'I', GW_BOOLEAN = 'B' };
+enum { GW_REAL = 'R', GW_INTEGER = 'I', GW_BOOLEAN = 'B', GW_STRING = 'S' };
 enum { GW_PARAMETER = 'P', GW_INPUT = 'U', GW_OUTPUT = 'Y' };
 
 typedef struct {
@@ -67,6 +67,15 @@ static const gw_variable *gw_find(fmi2ValueReference vr) {
     for (i = 0; i < GW_N_VARIABLES; ++i)
         if (gw_variables[i].vr == vr) return &gw_variables[i];
     return NULL;
+}
+
+/* Store the text of a String variable (cut to GW_STRING_SIZE - 1 bytes); the law a choosing
+ * one names is looked up. */
+static void gw_text(gw_instance *c, const gw_variable *v, const char *text) {
+    snprintf(GW_FIELD(c, v, char), GW_STRING_SIZE, "%s", text ? text : "");
+#ifdef GW_N_CHOICES
+    gw_choose(&c->state.self);
+#endif
 }
 
 static void gw_changed(gw_instance *c, bool parameter) {
@@ -186,6 +195,8 @@ static int gw_apply_start(gw_instance *c, const gw_variable *v, const char *text
         double value = strtod(text, &end);
         if (end == text || *end) return 1;
         *GW_FIELD(c, v, double) = value;
+    } else if (v->type == GW_STRING) {
+        gw_text(c, v, text);
     } else if (v->type == GW_INTEGER) {
         long value = strtol(text, &end, 10);
         if (end == text || *end) return 1;
@@ -387,11 +398,21 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t n, fmi2Boolean v[]) {
     return gw_get((gw_instance *)c, vr, n, GW_BOOLEAN, v);
 }
+/* String variables: the parameter that chooses a law (component.py), kept as its text. */
+static const gw_variable *gw_string(gw_instance *c, fmi2ValueReference vr) {
+    const gw_variable *v = gw_find(vr);
+    if (v && v->type == GW_STRING) return v;
+    gw_report(c, fmi2Error, "unknown value reference or not a String variable");
+    return NULL;
+}
+
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t n, fmi2String v[]) {
-    (void)vr; (void)v;
-    if (n == 0) return fmi2OK;
-    gw_report((gw_instance *)c, fmi2Error, "this FMU has no String variables");
-    return fmi2Error;
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        if (!gw_string((gw_instance *)c, vr[i])) return fmi2Error;
+        v[i] = GW_FIELD((gw_instance *)c, gw_find(vr[i]), char);
+    }
+    return fmi2OK;
 }
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n, const fmi2Real v[]) {
     return gw_set((gw_instance *)c, vr, n, GW_REAL, v);
@@ -403,10 +424,13 @@ fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
     return gw_set((gw_instance *)c, vr, n, GW_BOOLEAN, v);
 }
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t n, const fmi2String v[]) {
-    (void)vr; (void)v;
-    if (n == 0) return fmi2OK;
-    gw_report((gw_instance *)c, fmi2Error, "this FMU has no String variables");
-    return fmi2Error;
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        if (!gw_string((gw_instance *)c, vr[i])) return fmi2Error;
+        gw_text((gw_instance *)c, gw_find(vr[i]), v[i]);
+    }
+    if (n) gw_changed((gw_instance *)c, true);
+    return fmi2OK;
 }
 
 /* -- stepping ------------------------------------------------------------------------- */

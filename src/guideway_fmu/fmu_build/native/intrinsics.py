@@ -195,6 +195,12 @@ def _range(tr, args, kwargs):
     return Const(range(*[a.value for a in args]))
 
 
+def _dict(tr, args, kwargs):
+    if args:
+        raise tr.error("dict() is translated with keywords only")
+    return Dict(dict(kwargs))
+
+
 def _clip(tr, args, kwargs):
     x, low, high = args
     return Scalar("double", f"gw_npmin(gw_npmax({x.code}, {low.code}), {high.code})")
@@ -248,7 +254,7 @@ def table() -> dict:
         np.any: _reduce_all(False), builtins.any: _reduce_all(False),
         builtins.isinstance: _isinstance, builtins.type: _type, builtins.getattr: _getattr,
         builtins.len: _len, builtins.zip: _zip, builtins.enumerate: _enumerate,
-        builtins.range: _range, builtins.bool: _bool, np.where: _where,
+        builtins.range: _range, builtins.bool: _bool, builtins.dict: _dict, np.where: _where,
         np.clip: _numeric(np.clip, _clip), object.__setattr__: _setattr,
     })
     return handlers

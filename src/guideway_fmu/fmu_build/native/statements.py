@@ -22,8 +22,14 @@ class Statements:
     """Mixin of the translator (translate.TranslatorCore)."""
 
     def block(self, statements: list[ast.stmt]) -> None:
+        """Translate ``statements`` up to one that always leaves (a return, raise, break or
+        continue, also inside a branch decided when the C is written): what follows it never
+        runs, and may not even translate (it may be written for another law). ``self.left``
+        tells the caller; a run-time branch, loop or call clears it."""
         for statement in statements:
             self.statement(statement)
+            if self.left:
+                return
 
     def statement(self, node: ast.stmt) -> None:
         outer, self.node = self.node, node
@@ -85,6 +91,7 @@ class Statements:
 
     def stmt_Return(self, node):
         self.returned(self.expr(node.value) if node.value is not None else Const(None))
+        self.left = True
 
     def stmt_Raise(self, node):
         if node.exc is None:
@@ -99,6 +106,7 @@ class Statements:
         if exc.cls.__name__ not in ("ValueError", "RuntimeError"):  # as base._report words them
             parts = [Const(f"{exc.cls.__name__}: "), *parts]
         self.fail(parts)
+        self.left = True
 
     def stmt_FunctionDef(self, node):
         if node.decorator_list:
@@ -142,9 +150,11 @@ class Statements:
         before = dict(frame.locals)
         previous = self.out.capture()
         first()
+        self.left = False
         after_first, frame.locals = frame.locals, dict(before)
         lines_first = self.out.capture()
         second()
+        self.left = False
         after_second = frame.locals
         lines_second = self.out.restore(previous)
         merged = {}
@@ -193,6 +203,7 @@ class Statements:
         test = self.truth(self.expr(node.test))
         self.emit(f"if (!({test.code if isinstance(test, Scalar) else int(bool(test.value))})) break;")
         self.block(node.body)
+        self.left = False
         self.out.depth -= 1
         self.emit("}")
 
@@ -210,6 +221,8 @@ class Statements:
                 raise self.error("break or continue in a loop over a constant sequence")
             self.assign(node.target, item)
             self.block(node.body)
+            if self.left:  # a return or raise: no further pass runs
+                return
 
     def counted_loop(self, node, bounds) -> None:
         if not isinstance(node.target, ast.Name):
@@ -226,6 +239,7 @@ class Statements:
         self.out.depth += 1
         self.frame.locals[node.target.id] = Scalar("long", counter)
         self.block(node.body)
+        self.left = False
         self.out.depth -= 1
         self.emit("}")
 
@@ -244,9 +258,11 @@ class Statements:
 
     def stmt_Break(self, node):
         self.emit("break;")
+        self.left = True
 
     def stmt_Continue(self, node):
         self.emit("continue;")
+        self.left = True
 
     def stmt_With(self, node):
         for item in node.items:  # np.errstate: C arithmetic raises no floating-point errors

@@ -170,6 +170,7 @@ class TranslatorCore:
         self.methods = methods or {}  # (class, name) -> handler(translator, receiver, args, kwargs)
         self.frame: Frame | None = None
         self.node: ast.AST | None = None
+        self.left = False  # the statement just translated always leaves (Statements.block)
 
     # -- helpers ------------------------------------------------------------------------
     def fresh(self, hint: str) -> str:
@@ -441,6 +442,7 @@ class TranslatorCore:
             found = returns(node)
             frame.single_return = len(found) == 1 and node.body[-1] is found[0]
             self.block(node.body)
+            self.left = False
             if not frame.single_return and found:
                 self.emit(f"{frame.label}: ;")
             return frame.result if frame.result is not None else Const(None)

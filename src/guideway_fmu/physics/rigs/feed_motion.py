@@ -483,7 +483,7 @@ def from_parameters(profile, frequency, amplitude1, amplitude2, phase1, phase2, 
     }.get(name)
     if params is None:
         raise ValueError(f"parameter profile must be one of {PROFILES}, got {profile!r}")
-    return make_profile(name, **params)
+    return _FACTORIES[name](**params)
 
 
 class FeedModel(ContinuousModel):
