@@ -29,6 +29,7 @@ NATIVE = {
     "VerticalDynamics": {"F_contact": (-5e3, 5e3), "F_ext": (-100.0, 100.0),
                          "K_contact": (0.0, 1e9), "C_contact": (0.0, 1e3)},
     "FeedKinematics": {"u_cmd": (-0.2, 0.2)},
+    "ContactEHL": {"y": (-2e-6, 2e-6), "y_dot": (-1e-3, 1e-3), "u": (-0.2, 0.2)},
 }
 STEP = 1e-4  # s
 
@@ -361,3 +362,13 @@ def test_a_profile_outside_the_choices_or_not_translated_is_refused_by_name(
         finally:
             python.close()
         assert words in capfd.readouterr().err
+
+
+@pytest.mark.parametrize("parameters", [{"film_model": "pan_hamrock"}, {"interpolate_inputs": True}],
+                         ids=["pan_hamrock", "interpolated"])
+def test_contact_ehl_film_laws_run_natively_as_in_python(parameters, native_dir, fmu_dir):
+    script = _script("ContactEHL", 40, seed=5)
+    python = run_script(fmu_dir / "ContactEHL.fmu", parameters, script, STEP)
+    native = run_script(native_dir / "ContactEHL.fmu", parameters, script, STEP)
+    for k, (a, b) in enumerate(zip(python, native, strict=True)):
+        assert b == pytest.approx(a, rel=1e-12, abs=1e-300), k

@@ -11,6 +11,8 @@ from .values import (
     Choice,
     Const,
     Dict,
+    Joined,
+    Masked,
     Message,
     Obj,
     Scalar,
@@ -93,6 +95,9 @@ class Expressions:
                 raise self.error(f"index {key.value!r} of {describe(container)}") from None
         if isinstance(container, Const) and isinstance(key, Const):
             return from_python(container.value[key.value])
+        if isinstance(container, Array) and isinstance(key, Array) and \
+                len(key.items) == len(container.items):
+            return Masked(list(container.items), [self.truth(k) for k in key.items])
         raise self.error(f"indexing {describe(container)} by {describe(key)} is not translated")
 
     def expr_Slice(self, node):
@@ -101,6 +106,10 @@ class Expressions:
         if not all(isinstance(p, Const) for p in parts):
             raise self.error("a slice must be known when the C is written")
         return Const(slice(*(p.value for p in parts)))
+
+    def expr_NamedExpr(self, node):
+        self.bind(node.target.id, self.expr(node.value))
+        return self.frame.locals[node.target.id]
 
     def expr_Lambda(self, node):
         defaults = self.argument_defaults(node.args)
@@ -356,6 +365,18 @@ class Expressions:
             for sub in part.parts:
                 self.message_part(sub)
             return
+        if isinstance(part, Joined):
+            first = self.out.declare("bool", "first")
+            self.emit(f"{first} = 1;")
+            for condition, item in part.items:
+                if condition is not None:
+                    self.emit(f"if ({condition.code}) {{")
+                self.emit(f"if (!{first}) gw_msg_text(ctx, {c_string(part.separator)});")
+                self.emit(f"{first} = 0;")
+                self.message_part(item)
+                if condition is not None:
+                    self.emit("}")
+            return
         if isinstance(part, Scalar):
             part = (part, "", "")
         value, spec, _ = part  # str and repr of a number are the same text
@@ -381,7 +402,13 @@ class Expressions:
         return Dict(items)
 
     def expr_ListComp(self, node):
-        return Tuple([self.expr(node.elt) for _ in self.comprehension(node.generators)])
+        """The items; under a condition known at run time only (a mask, an ``if``), each item
+        is (condition, item), which only str.join takes."""
+        items = []
+        for when in self.comprehension(node.generators):
+            item = self.expr(node.elt)
+            items.append(item if when is None else (when, item))
+        return Tuple(items)
 
     expr_GeneratorExp = expr_ListComp
 
@@ -396,18 +423,28 @@ class Expressions:
         finally:
             self.frame = outer
 
-    def _combinations(self, generators):
+    def _combinations(self, generators, when=None):
+        """Bind each item in turn; yields the run-time condition of the combination (a bool
+        Scalar: its mask and ``if`` clauses that are not known when the C is written) or None."""
         first, rest = generators[0], generators[1:]
-        for item in self.iterate(self.expr(first.iter)):
+        sequence = self.expr(first.iter)
+        if isinstance(sequence, Masked):
+            pairs = list(zip(sequence.items, sequence.mask))
+        else:
+            pairs = [(item, Const(True)) for item in self.iterate(sequence)]
+        for item, mask in pairs:
             self.assign(first.target, item)
-            conditions = [self.truth(self.expr(c)) for c in first.ifs]
-            if any(not isinstance(c, Const) for c in conditions):
-                raise self.error("a comprehension's condition must be known when the C is written")
-            if all(c.value for c in conditions):
-                if rest:
-                    yield from self._combinations(rest)
-                else:
-                    yield None
+            conditions = [mask, *(self.truth(self.expr(c)) for c in first.ifs)]
+            if any(isinstance(c, Const) and not c.value for c in conditions):
+                continue
+            codes = [c.code for c in conditions if not isinstance(c, Const)]
+            if when is not None:
+                codes.insert(0, when.code)
+            condition = Scalar("bool", "(" + " && ".join(codes) + ")") if codes else None
+            if rest:
+                yield from self._combinations(rest, condition)
+            else:
+                yield condition
 
 
 def c_string(text: str) -> str:

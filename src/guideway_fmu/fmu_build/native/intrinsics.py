@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .translate import from_python
-from .values import Array, Const, Dict, Obj, Scalar, Tuple, describe, is_number
+from .values import Array, Const, Dict, Masked, Obj, Scalar, Tuple, describe, is_number
 
 # Python function -> C function of one double
 _UNARY = {
@@ -195,6 +195,69 @@ def _range(tr, args, kwargs):
     return Const(range(*[a.value for a in args]))
 
 
+def _shape(tr, value) -> tuple:
+    """numpy's shape of a number (()) or a 1-D array ((n,))."""
+    if isinstance(value, Tuple):
+        return (len(value.items),)
+    if isinstance(value, Scalar) or (isinstance(value, Const) and is_number(value.value)):
+        return ()
+    raise tr.error(f"the shape of {describe(value)} is not translated")
+
+
+def _broadcast_to(tr, args, kwargs):
+    value, shape = args
+    if not (isinstance(shape, Const) and isinstance(shape.value, tuple) and len(shape.value) <= 1):
+        raise tr.error("broadcast_to needs a 1-D shape known when the C is written")
+    if not shape.value:
+        return value
+    return tr.elementwise(lambda v, _: v, value, Array([Const(0)] * shape.value[0]))
+
+
+def _broadcast_arrays(tr, args, kwargs):
+    shapes = {_shape(tr, a) for a in args} - {()}
+    if len(shapes) > 1:
+        raise tr.error(f"arrays of shapes {sorted(shapes)} do not broadcast")
+    shape = shapes.pop() if shapes else ()
+    return Tuple([_broadcast_to(tr, [a, Const(shape)], {}) for a in args])
+
+
+def _stack(tr, args, kwargs):
+    items = tr.iterate(args[0])
+    if kwargs.get("axis", Const(0)).value != 0 or any(_shape(tr, i) for i in items):
+        raise tr.error("np.stack is translated for numbers along axis 0 only")
+    return Array(list(items))
+
+
+def _like(fill):
+    def handler(tr, args, kwargs):
+        shape = _shape(tr, args[0])
+        return Array([Const(fill)] * shape[0]) if shape else Const(fill)
+    return handler
+
+
+def _divide(tr, args, kwargs):
+    """np.divide: IEEE division (no exception at zero); with ``where``, ``out`` elsewhere."""
+    a, b = args
+    if any(isinstance(v, Array) for v in (a, b, kwargs.get("where"), kwargs.get("out"))):
+        keys = [k for k in ("where", "out") if k in kwargs]
+        return tr.elementwise(lambda x, y, *rest: _divide(tr, [x, y], dict(zip(keys, rest))),
+                              a, b, *(kwargs[k] for k in keys))
+    a, b = tr.scalar(a), tr.scalar(b)
+    quotient = Scalar("double", f"((double){a.code} / (double){b.code})")
+    if "where" not in kwargs:
+        return quotient
+    return _where(tr, [kwargs["where"], quotient, kwargs.get("out", Const(0.0))], {})
+
+
+def _ravel(tr, args, kwargs):
+    value = args[0]
+    if isinstance(value, (Array, Masked)):
+        return value
+    if isinstance(value, Tuple):
+        return _asarray(tr, [value], {})
+    return Array([value])
+
+
 def _dict(tr, args, kwargs):
     if args:
         raise tr.error("dict() is translated with keywords only")
@@ -219,6 +282,8 @@ def _bool(tr, args, kwargs):
 
 
 def _where(tr, args, kwargs):
+    if any(isinstance(a, Array) for a in args):
+        return tr.elementwise(lambda *row: _where(tr, list(row), kwargs), *args)
     condition = tr.truth(args[0])
     a, b = tr.scalar(args[1]), tr.scalar(args[2])
     if isinstance(condition, Const):
@@ -255,6 +320,9 @@ def table() -> dict:
         builtins.isinstance: _isinstance, builtins.type: _type, builtins.getattr: _getattr,
         builtins.len: _len, builtins.zip: _zip, builtins.enumerate: _enumerate,
         builtins.range: _range, builtins.bool: _bool, builtins.dict: _dict, np.where: _where,
+        np.broadcast_to: _broadcast_to, np.broadcast_arrays: _broadcast_arrays, np.stack: _stack,
+        np.zeros_like: _like(0.0), np.ones_like: _like(1.0), np.ravel: _ravel,
+        np.divide: _divide,
         np.clip: _numeric(np.clip, _clip), object.__setattr__: _setattr,
     })
     return handlers

@@ -214,7 +214,8 @@ class Statements:
         if isinstance(iterable, ast.Call) and isinstance(iterable.func, ast.Name) and \
                 iterable.func.id == "range" and not iterable.keywords:
             bounds = [self.expr(a) for a in iterable.args]
-            if any(isinstance(b, Scalar) for b in bounds):
+            if any(isinstance(b, Scalar) for b in bounds) or (
+                    len(bounds) < 3 and len(range(*(b.value for b in bounds))) > UNROLLED):
                 return self.counted_loop(node, bounds)
         for item in list(self.iterate(self.expr(iterable))):
             if _breaks(node.body):
@@ -279,6 +280,11 @@ class Statements:
         for part in parts:
             self.message_part(part)
         self.emit("goto gw_fail;")
+
+
+#: a for loop over a range known when the C is written is unrolled up to this many passes (its
+#: counter may index a tuple), and a C loop beyond (a solver's iteration limit)
+UNROLLED = 16
 
 
 def _load(node):

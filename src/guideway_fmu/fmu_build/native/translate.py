@@ -14,6 +14,7 @@ import ast
 import builtins
 import dataclasses
 import inspect
+import math
 import sys
 import sysconfig
 import types
@@ -27,6 +28,7 @@ from .values import (
     Const,
     Dict,
     Func,
+    Joined,
     Message,
     Obj,
     Scalar,
@@ -307,6 +309,9 @@ class TranslatorCore:
                 raise self.error(f"{describe(value)} has no attribute {name}") from None
         if isinstance(value, Dict) and name in ("items", "keys", "values", "get"):
             return Const(_Bound(_DICT_METHODS[name], value))
+        if isinstance(value, (Array, Scalar)) and name in ("shape", "ndim", "size"):
+            shape = (len(value.items),) if isinstance(value, Array) else ()
+            return Const({"shape": shape, "ndim": len(shape), "size": math.prod(shape)}[name])
         raise self.error(f"attribute {name} of {describe(value)} is not translated")
 
     def class_attribute(self, cls: type, name: str, receiver):
@@ -349,11 +354,22 @@ class TranslatorCore:
             return self.inline(func_of(target), args, kwargs)
         if isinstance(target, type):
             return self.construct(target, args, kwargs)
+        if isinstance(target, types.BuiltinMethodType) and isinstance(
+                getattr(target, "__self__", None), str) and target.__name__ == "join":
+            return self.join(target.__self__, self.iterate(args[0]))
         if isinstance(target, types.BuiltinFunctionType | types.BuiltinMethodType) and all(
                 isinstance(a, Const) for a in [*args, *kwargs.values()]):
             return from_python(target(*[a.value for a in args],
                                       **{k: v.value for k, v in kwargs.items()}))
         raise self.error(f"call of {describe(func)} is not translated")
+
+    def join(self, separator: str, items: list):
+        """``separator.join(items)``: folded when every item is known text, else a message
+        (items under a run-time condition: (condition, text), from a comprehension)."""
+        if all(isinstance(i, Const) and isinstance(i.value, str) for i in items):
+            return Const(separator.join(i.value for i in items))
+        return Message([Joined(separator, [i if isinstance(i, tuple) else (None, i)
+                                           for i in items])])
 
     def construct(self, cls: type, args: list, kwargs: dict):
         if issubclass(cls, BaseException):
@@ -462,8 +478,9 @@ class TranslatorCore:
         if frame.single_return:
             frame.result = value
             return
-        if frame.result is None:
-            frame.result = self.variable(value, frame) if not isinstance(value, Const) else value
+        if frame.result is None:  # a number may meet a run-time one at a later return
+            frame.result = self.variable(value, frame) if not isinstance(value, Const) or \
+                is_number(value.value) else value
         else:
             self.store(frame.result, value, "the returned value")
         self.emit(f"goto {frame.label};")

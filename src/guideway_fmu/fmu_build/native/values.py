@@ -89,6 +89,24 @@ class Message:
     parts: list
 
 
+@dataclass
+class Masked:
+    """``array[mask]`` with a mask known at run time only: the items where it holds, of a length
+    unknown when the C is written, so only a message may list them (comprehension, str.join)."""
+
+    items: list
+    mask: list  # per item: a bool Scalar, or a Const
+
+
+@dataclass
+class Joined:
+    """A message part: the present ``items`` ((condition or None, text part)) joined by
+    ``separator``, as str.join over a comprehension with run-time conditions."""
+
+    separator: str
+    items: list
+
+
 def literal(value) -> str:
     """The C literal of a Python number or bool."""
     if isinstance(value, bool):
