@@ -372,3 +372,20 @@ def test_contact_ehl_film_laws_run_natively_as_in_python(parameters, native_dir,
     native = run_script(native_dir / "ContactEHL.fmu", parameters, script, STEP)
     for k, (a, b) in enumerate(zip(python, native, strict=True)):
         assert b == pytest.approx(a, rel=1e-12, abs=1e-300), k
+
+
+def test_every_native_fmu_runs_in_a_plain_c_host_with_an_empty_environment_like_python(
+        native_dir, fmu_dir, tmp_path):
+    from guideway_fmu.fmu_build import host_env
+
+    executable = host_env.compile_c_host(tmp_path)
+    python_env = host_env.host_environment()
+    for name in NATIVE:
+        runs = [host_env.run_in_c_host(executable, native_dir / f"{name}.fmu", {},
+                                       work_dir=tmp_path) for _ in range(3)]
+        assert [r.status for r in runs] == [0, 0, 0], (name, runs[0].stderr[-2000:])
+        python = host_env.run_in_c_host(executable, fmu_dir / f"{name}.fmu", python_env,
+                                        work_dir=tmp_path)
+        assert python.status == 0, python.stderr[-2000:]
+        assert runs[0].outputs == pytest.approx(python.outputs, rel=1e-13, abs=1e-300), name
+        assert runs[0].outputs  # every Real output was read
