@@ -1,8 +1,10 @@
-"""Wall time of the co-simulation against the monolithic reference on every shipped scenario,
-written to docs/speed.md.
+"""Wall time of the co-simulation, with each FMU edition, against the monolithic reference on
+every shipped scenario, written to docs/speed.md.
 
 Each scenario runs through the master at its own step (or ``--step``, for a convergence study)
-and through the reference on the recorded grid, one after the other in this process. Both
+with the FMU cache's python set, then its native set (``guideway-fmu build --edition native``:
+compiled C where a component has a native edition), and through the reference on the recorded
+grid, one after the other in this process. All
 times are of the whole call, as a user makes it: ``master.simulate`` (instantiating the FMUs,
 stepping, recording) and ``monolithic.simulate`` (assembling, integrating, evaluating every
 output at the recorded times). The error is the RMS error of the signal
@@ -10,7 +12,7 @@ output at the recorded times). The error is the RMS error of the signal
 reference's predictability chooses, is docs/accuracy.md's). The FMI time of each instance per
 macro step and the master's own overhead say where the co-simulation's time goes.
 
-    python benchmarks/scenario_speed.py [--fmus fmus] [--stop S] [--step H] [--out docs/speed.md] [NAME ...]
+    python benchmarks/scenario_speed.py [--stop S] [--step H] [--out docs/speed.md] [NAME ...]
 """
 from __future__ import annotations
 
@@ -18,9 +20,11 @@ import argparse
 import time
 from pathlib import Path
 
+import numpy as np
+
 from guideway_fmu import scenarios
-from guideway_fmu.fmu_build.build import ensure
 from guideway_fmu.cosim import master, system
+from guideway_fmu.fmu_build import build, cache
 from guideway_fmu.cosim.observers import Observer
 from guideway_fmu.reference import monolithic
 from guideway_fmu.reference.verify import compare, judged_signals
@@ -29,8 +33,13 @@ import pages
 
 TARGET, STRETCH = 1.0, 0.5  # co-simulation over reference wall time
 NOTES = """\
-Where the co-simulation's time goes (the last columns; profiles of 0.01-0.02 s runs, cProfile
-and the time of each FMI call). A Soleimanian scenario makes 8 FMI calls a macro step: each
+With the native edition a component's FMI calls cost what its C physics costs plus fmpy's ctypes
+call (about 1 us); the master's own part (bus, coupling, recording, in Python) is then most of
+a step: the compiled stepping loop is the next step (issue 41). The paragraphs below were
+measured with the python edition.
+
+Where the co-simulation's time goes (profiles of 0.01-0.02 s runs, cProfile and the time of
+each FMI call). A Soleimanian scenario makes 8 FMI calls a macro step: each
 instance's inputs (one batched call per instance and type; the feed has none), its doStep and
 its outputs (one batched call; where every step is recorded the recorded-only loads and films
 are read in that call too); `soleimanian2020_unloaded` adds the friction FMU's inputs, doStep
@@ -89,85 +98,111 @@ class FmiTimes(Observer):
         self.spent = {n: i.fmi_time - self.start[n] for n, i in self.instances.items()}
 
 
-def measure(s: system.System) -> dict:
-    """Both wall times [s], their ratio, the judged signal's RMS error / range and the
-    co-simulation's costs per macro step [us]; raises ValueError where the reference cannot
-    model the system."""
-    monolithic.check(s)
+def cosimulate(s: system.System) -> dict:
+    """The co-simulation's wall time [s], its recording and its costs per macro step [us]."""
     fmi = FmiTimes()
     t0 = time.perf_counter()
     result = master.simulate(s, observers=(fmi,))
-    cosim = time.perf_counter() - t0
-    rec = result.recording
-    t0 = time.perf_counter()
-    reference = monolithic.simulate(s, times=rec.time)
-    whole = time.perf_counter() - t0
-    rms, _ = compare(rec.time, rec.columns, reference)
-    signal, _ = judged_signals(s, rms)
+    wall = time.perf_counter() - t0
     per_step = 1e6 / result.steps
-    return {"cosim": cosim, "reference": whole, "ratio": cosim / whole,
-            "signal": signal, "error": rms[signal], "steps": result.steps,
-            "method": reference.method, "loop": result.wall_time * per_step,
+    return {"wall": wall, "result": result, "steps": result.steps,
+            "loop": result.wall_time * per_step,
             "overhead": (result.wall_time - result.fmi_time) * per_step,
             "fmi": {n: t * per_step for n, t in fmi.spent.items()}}
 
 
-def row(name: str, s: system.System, m: dict) -> str:
-    costs = ", ".join(f"{n} {t:.1f}" for n, t in m["fmi"].items())
-    return (f"| {name} | {s.experiment.step * 1e6:g} us | {m['steps']} | {m['cosim']:.2f} "
-            f"| {m['reference']:.2f} ({m['method']}) | {m['ratio']:.2f} | {m['signal']} "
-            f"| {100 * m['error']:.3g} | {m['loop']:.1f} | {m['overhead']:.1f} | {costs} |")
+def measure(editions: dict[str, system.System]) -> dict:
+    """Each edition's co-simulation, the reference's wall time [s] and method, the judged
+    signal's RMS error / range (python edition) and the largest relative difference of any
+    recorded column between the editions; raises ValueError where the reference cannot model
+    the system."""
+    python = editions["python"]
+    monolithic.check(python)
+    runs = {edition: cosimulate(s) for edition, s in editions.items()}
+    rec = runs["python"]["result"].recording
+    t0 = time.perf_counter()
+    reference = monolithic.simulate(python, times=rec.time)
+    whole = time.perf_counter() - t0
+    rms, _ = compare(rec.time, rec.columns, reference)
+    signal, _ = judged_signals(python, rms)
+    native = runs["native"]["result"].recording
+    differ = max(float(np.max(np.abs(np.asarray(native.columns[c]) - np.asarray(v)))
+                       / max(float(np.max(np.abs(v))), 1e-300)) for c, v in rec.columns.items())
+    return {"runs": runs, "reference": whole, "method": reference.method, "signal": signal,
+            "error": rms[signal], "differ": differ}
+
+
+def row(name: str, s: system.System, m: dict, native: list[str]) -> str:
+    py, nat = m["runs"]["python"], m["runs"]["native"]
+    costs = ", ".join(f"{n} {t:.1f}" for n, t in nat["fmi"].items())
+    return (f"| {name} | {s.experiment.step * 1e6:g} us | {py['steps']} | "
+            f"{', '.join(native) or 'none'} | {m['reference']:.2f} ({m['method']}) | "
+            f"{py['wall']:.2f} | {py['wall'] / m['reference']:.2f} | {nat['wall']:.2f} | "
+            f"{nat['wall'] / m['reference']:.2f} | {py['wall'] / nat['wall']:.1f} | {m['signal']} "
+            f"| {100 * m['error']:.3g} | {m['differ']:.1e} | {py['loop']:.1f} | {nat['loop']:.1f} "
+            f"| {nat['overhead']:.1f} | {costs} |")
 
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("names", nargs="*", help="shipped scenarios (default: all)")
-    p.add_argument("--fmus", type=Path, default=Path("fmus"), help="FMU folder (built where missing)")
     p.add_argument("--stop", type=float, default=None, help="shorter runs [s] (default: the scenarios')")
     p.add_argument("--step", type=float, default=None, help="macro step [s] for every scenario "
                    "(default: each scenario's)")
     p.add_argument("--out", type=Path, default=Path(__file__).resolve().parents[1] / "docs" / "speed.md")
     args = p.parse_args()
-    ensure(args.fmus)
-    rows, ratios, errors = [], [], []
+    folders = {edition: cache.folder(edition) for edition in build.EDITIONS}
+    rows, ratios, errors = [], {e: [] for e in folders}, []
     for name in args.names or scenarios.names():
-        s = system.load(scenarios.find(name), args.fmus).with_changes(
+        editions = {e: system.load(scenarios.find(name), folder).with_changes(
             **({} if args.stop is None else {"stop": args.stop}),
-            **({} if args.step is None else {"step": args.step}))
+            **({} if args.step is None else {"step": args.step})) for e, folder in folders.items()}
+        s = editions["python"]
+        native = [c.name for c in s.components.values()
+                  if build.edition_of(Path(c.fmu).stem, "native") == "native"]
         try:
-            m = measure(s)
+            m = measure(editions)
         except ValueError as refused:  # a component the reference has no model of
-            rows.append(f"| {name} | {s.experiment.step * 1e6:g} us | | | | | not compared: "
-                        f"{refused} | | | | |")
+            rows.append(f"| {name} | {s.experiment.step * 1e6:g} us | | {', '.join(native)} | | "
+                        f"| | | | | not compared: {refused} | | | | | | |")
         else:
-            rows.append(row(name, s, m))
-            ratios.append(m["ratio"])
+            rows.append(row(name, s, m, native))
+            for edition in folders:
+                ratios[edition].append(m["runs"][edition]["wall"] / m["reference"])
             errors.append(m["error"])
         print(rows[-1], flush=True)
     options = "".join(f" --{k} {getattr(args, k):g}" for k in ("stop", "step")
                       if getattr(args, k) is not None) + "".join(f" {n}" for n in args.names)
-    if not ratios:
+    if not errors:
         raise SystemExit("no scenario compared: the reference models none of them (rows above)")
-    summary = (f"Largest ratio {max(ratios):.2f} (target {TARGET:g}, stretch {STRETCH:g}): "
-               f"{sum(r <= TARGET for r in ratios)} of {len(ratios)} compared scenarios at most "
-               f"{TARGET:g}, {sum(r <= STRETCH for r in ratios)} at most {STRETCH:g}; largest "
-               f"error {100 * max(errors):.3g} %.")
+    summary = " ".join(
+        f"{edition.capitalize()} edition: largest ratio {max(r):.2f} (target {TARGET:g}, "
+        f"stretch {STRETCH:g}), {sum(x <= TARGET for x in r)} of {len(r)} compared scenarios at "
+        f"most {TARGET:g}, {sum(x <= STRETCH for x in r)} at most {STRETCH:g}."
+        for edition, r in ratios.items()) + f" Largest error {100 * max(errors):.3g} %."
     print(summary)
     pages.write(args.out, "\n".join([
         "# Co-simulation speed on the shipped scenarios", "",
-        "Each scenario runs through the master (the stabilised coupling at its step) and through "
+        "Each scenario runs through the master (the stabilised coupling at its step) with the "
+        "python edition of the FMUs, then the native edition (`guideway-fmu build --edition "
+        "native`: compiled C for the components listed, python for the others), and through "
         "the monolithic reference (LSODA, or RK45 where a model is not smooth; rtol 1e-10) on "
         "the recorded grid, one after the other in one process on a shared machine (the load "
-        "moves both times, their ratio less). Both are whole calls: the co-simulation "
+        "moves the times, their ratios less). All are whole calls: the co-simulation "
         "instantiates its FMUs, steps and records; the reference assembles the system, "
         "integrates and evaluates every output at the recorded times (a system without states, "
         "such as zhang2019_feed_unit_milling, integrates nothing: its cost is the outputs). The "
         "error is the RMS error of the signal `verify` judges relative to its range "
-        "([accuracy.md](accuracy.md) has the criterion and verdicts). Per macro step [us]: the "
-        "stepping loop, the master's own part of it, and each instance's FMI calls.", "",
-        "| scenario | step | steps | co-simulation [s] | reference [s] | ratio | signal "
-        "| error [%] | loop / step | master / step | FMI / step by instance |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |", *rows, "",
+        "([accuracy.md](accuracy.md) has the criterion and verdicts); the editions' difference "
+        "is the largest difference of any recorded column relative to its largest value. Per "
+        "macro step [us]: the stepping loop with each edition, and with the native edition the "
+        "master's own part of it and each instance's FMI calls.", "",
+        "| scenario | step | steps | native components | reference [s] | python co-simulation [s] "
+        "| ratio | native co-simulation [s] | ratio | speed-up | signal | error [%] | editions "
+        "differ by | python loop / step | native loop / step | master / step | FMI / step by "
+        "instance |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
+        "| --- | --- |", *rows, "",
         summary, "", NOTES]), f"python benchmarks/scenario_speed.py{options}", __file__,
         (f"{pages.SCENARIOS}/*.toml",))
     print(args.out)
