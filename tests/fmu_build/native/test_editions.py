@@ -389,3 +389,61 @@ def test_every_native_fmu_runs_in_a_plain_c_host_with_an_empty_environment_like_
         assert python.status == 0, python.stderr[-2000:]
         assert runs[0].outputs == pytest.approx(python.outputs, rel=1e-13, abs=1e-300), name
         assert runs[0].outputs  # every Real output was read
+
+
+def test_an_ssp_of_native_fmus_with_baked_parameters_runs_in_libcosim_and_fmpy_as_in_our_master(
+        native_dir, fmu_dir, tmp_path):
+    """The native FMUs of a Soleimanian rig in an SSP package whose FMUs carry the scenario's
+    parameters as start values (a String among them): libcosim and fmpy's SSP runner give our
+    master's rows, and so does the python edition."""
+    from fmpy.ssp.simulation import simulate_ssp
+
+    from guideway_fmu import scenarios
+    from guideway_fmu.cosim import master, ssp, system
+
+    def load(folder, name):
+        b = system.Builder(name).experiment(start=0.0, stop=2e-4, step=1e-6, algorithm="jacobi")
+        b.component("Feed", "FeedKinematics.fmu", profile="oscillating", mean_velocity=0.0,
+                    frequency=40.0)
+        b.component("Carriage", "VerticalDynamics.fmu")
+        b.component("Contact", "ContactEHL.fmu", preload=8000.0)
+        for source, target in [("Feed.u", "Contact.u"), *scenarios.coupling()]:
+            b.connect(source, target)
+        system.dump(b.system(check_fmus=False), tmp_path / f"{name}.toml")
+        return system.load(tmp_path / f"{name}.toml", fmu_dir=folder)
+
+    native, python = load(native_dir, "native"), load(fmu_dir, "python")
+    names = [f"{i}.{n}" for i, vs in native.variables.items() for n, v in vs.items()
+             if v.causality == "output"]
+    ours = master.simulate(native).recording
+    reference = master.simulate(python).recording
+    package = ssp.export_ssp(native, tmp_path / "native.ssp")
+    _, libcosim = ssp.run_libcosim(package, names, 200)
+    rows = simulate_ssp(str(package), start_time=0.0, stop_time=2e-4, step_size=1e-6)
+    assert ours.columns["Contact.F_upper"][0] == pytest.approx(8000.0 / 80)  # baked preload
+    for name in names:
+        scale = np.abs(ours.columns[name]).max()
+        np.testing.assert_allclose(ours.columns[name], reference.columns[name], rtol=1e-13,
+                                   atol=1e-13 * scale, err_msg=name)
+        np.testing.assert_allclose(libcosim[name], ours.columns[name], rtol=1e-11,
+                                   atol=1e-11 * scale, err_msg=name)
+        np.testing.assert_allclose(rows[name][:200], ours.columns[name][1:], rtol=1e-11,
+                                   atol=1e-11 * scale, err_msg=name)
+
+
+def test_export_fmu_packs_the_native_set_and_runs_as_the_python_one(tmp_path, capsys):
+    import fmpy
+
+    from guideway_fmu import cli
+
+    results = {}
+    for edition in ("python", "native"):
+        out = tmp_path / f"{edition}.fmu"
+        assert cli.main(["export-fmu", "soleimanian2020_9000N_4500Hz_dry", str(out), "--edition",
+                         edition, "--stop", "2e-4"]) == 0
+        results[edition] = fmpy.simulate_fmu(str(out), stop_time=2e-4, output_interval=4e-6)
+    capsys.readouterr()
+    python, native = results["python"], results["native"]
+    assert len(native) == len(python) > 40
+    for name in python.dtype.names:
+        assert native[name] == pytest.approx(python[name], rel=1e-12, abs=1e-18), name
