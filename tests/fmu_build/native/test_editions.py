@@ -30,6 +30,8 @@ NATIVE = {
                          "K_contact": (0.0, 1e9), "C_contact": (0.0, 1e3)},
     "FeedKinematics": {"u_cmd": (-0.2, 0.2)},
     "ContactEHL": {"y": (-2e-6, 2e-6), "y_dot": (-1e-3, 1e-3), "u": (-0.2, 0.2)},
+    **{name: {"F_upper": (0.0, 900.0), "F_lower": (0.0, 900.0), "u": (-0.2, 0.2), "x": (-0.3, 1.3)}
+       for name in ("FrictionPositionDependent", "FrictionBallToBall", "FrictionPreloadLoss")},
 }
 STEP = 1e-4  # s
 
@@ -447,3 +449,90 @@ def test_export_fmu_packs_the_native_set_and_runs_as_the_python_one(tmp_path, ca
     assert len(native) == len(python) > 40
     for name in python.dtype.names:
         assert native[name] == pytest.approx(python[name], rel=1e-12, abs=1e-18), name
+
+
+TABLES = [("FrictionPositionDependent", {"factors": "0.8 1.3 0.9 1.1 1.0 1.25 0.7"}),
+          ("FrictionBallToBall", {"factors": "1 1.5 2", "table_start": 0.1, "table_end": 0.4}),
+          ("FrictionBallToBall", {"factors": " ".join(["1.0", "1.2"] * 60)}),
+          ("FrictionPreloadLoss", {"law": "table", "profile": "0 0.5 0.6 0.9 1",
+                                   "loss": 0.4, "wear_distance": 0.01}),
+          ("FrictionPreloadLoss", {"law": "wear", "loss": 0.3, "wear_distance": 0.02}),
+          ("FrictionPreloadLoss", {"law": "exponential", "loss": 0.3, "wear_distance": 0.005})]
+
+
+@pytest.mark.parametrize("name, parameters", TABLES,
+                         ids=[f"{n}-{len(str(p).split())}" for n, p in TABLES])
+def test_friction_tables_of_any_length_a_string_gives_run_natively_as_in_python(
+        name, parameters, native_dir, fmu_dir):
+    script = _script(name, 60, seed=17)
+    python = run_script(fmu_dir / f"{name}.fmu", parameters, script, STEP)
+    native = run_script(native_dir / f"{name}.fmu", parameters, script, STEP)
+    assert len({r["F_friction"] for r in native}) > 10
+    for a, b in zip(python, native, strict=True):
+        assert b == pytest.approx(a, rel=1e-13, abs=1e-300)
+
+
+@pytest.mark.parametrize("name, parameters, words", [
+    ("FrictionPositionDependent", {"factors": "1 x 2"},
+     "parameter factors must be numbers separated by spaces, got '1 x 2'"),
+    ("FrictionBallToBall", {"factors": "1"},
+     "parameter factors needs at least 2 finite numbers, got '1'"),
+    ("FrictionBallToBall", {"factors": "1 nan"},
+     "parameter factors needs at least 2 finite numbers, got '1 nan'"),
+    ("FrictionPreloadLoss", {"law": "table", "profile": "0 0.7 0.6 1"},
+     "parameter profile must rise from 0 to 1 without falling back, got '0 0.7 0.6 1'"),
+    ("FrictionPreloadLoss", {"law": "linear"},
+     "parameter law must be one of ('exponential', 'wear', 'table'), got 'linear'")])
+def test_a_bad_table_is_refused_in_pythons_words(name, parameters, words, native_dir, fmu_dir,
+                                                 capfd):
+    for folder in (native_dir, fmu_dir):
+        fmu = Driven(folder / f"{name}.fmu")
+        try:
+            fmu.start({}, {})
+            fmu.set(parameters)
+            assert fmu.step(0.0, STEP) == fmi2Discard and fmu.terminated
+        finally:
+            fmu.close()
+        assert words in capfd.readouterr().err, folder
+
+
+def test_a_table_longer_than_the_native_capacity_is_refused_naming_the_python_edition(
+        native_dir, capfd):
+    from guideway_fmu.fmu_build.native.vectors import CAPACITY
+    fmu = Driven(native_dir / "FrictionBallToBall.fmu")
+    try:
+        fmu.start({}, {})
+        fmu.set({"factors": " ".join(["1"] * (CAPACITY + 1))})
+        assert fmu.step(0.0, STEP) == fmi2Discard and fmu.terminated
+    finally:
+        fmu.close()
+    assert (f"an array of {CAPACITY + 1} numbers is longer than the native edition holds "
+            f"({CAPACITY}); take the python edition") in capfd.readouterr().err
+
+
+def test_a_text_longer_than_the_native_edition_holds_is_an_error_naming_the_variable(
+        native_dir, capfd):
+    from guideway_fmu.fmu_build.native.component import STRING_SIZE
+    fmu = Driven(native_dir / "FrictionPositionDependent.fmu")
+    try:
+        with pytest.raises(FMICallException):
+            fmu.set({"factors": "1 " * STRING_SIZE})
+        assert fmu.slave.getString([fmu.refs["factors"].valueReference]) == [b"1 1"]  # kept
+    finally:
+        fmu.slave.freeInstance()
+    assert (f"the text given to factors is longer than the native edition holds "
+            f"({STRING_SIZE - 1} bytes); take the python edition") in capfd.readouterr().err
+
+
+def test_a_long_table_baked_into_the_model_description_is_where_the_native_fmu_starts(
+        native_dir, fmu_dir, tmp_path):
+    from guideway_fmu.fmi.archive import with_start_values
+    factors = " ".join(repr(1.0 + 0.01 * k) for k in range(200))  # 3.6 kB of text
+    script = _script("FrictionPositionDependent", 20, seed=4)
+    rows = {}
+    for edition, folder in (("native", native_dir), ("python", fmu_dir)):
+        fmu = with_start_values(folder / "FrictionPositionDependent.fmu", tmp_path / f"{edition}.fmu",
+                                {"factors": factors})
+        rows[edition] = run_script(fmu, {}, script, STEP)
+    for a, b in zip(rows["python"], rows["native"], strict=True):
+        assert b == pytest.approx(a, rel=1e-13, abs=1e-300)

@@ -153,7 +153,8 @@ class FrictionPreloadLoss(_RunningDistance):
         self.parameter("law", "exponential", None, "exponential: the level decays as "
                        "exp(-D/wear_distance); wear: the preload's share follows "
                        "(1 - D/wear_distance)^load_exponent (raceways wearing steadily); table: "
-                       "the loss follows profile up to wear_distance (any monotone loss)")
+                       "the loss follows profile up to wear_distance (any monotone loss)",
+                       choices=effects.PRELOAD_LAWS)
         self.parameter("load_exponent", 1.5, "1", "law wear: n of the preload Q0 ~ delta0^n "
                        "(1.5 Hertz balls, 10/9 rollers)")
         self.parameter("profile", "0 1", None, "law table: the share of loss lost at equally "

@@ -5,15 +5,15 @@ values and its model built, and what it holds then fixes the struct: each parame
 (Real: double, Integer: long, Boolean: bool), each ``internal_state`` attribute and the model
 ``build_model`` returns, flattened to its numbers. Strings, None, functions and classes the
 model holds are part of its shape, fixed in the C. Other instance attributes (the lists base.py
-keeps of inputs) are constants.
+keeps of inputs) are constants. A String parameter is kept as text (values.Text): the physics may
+read numbers from its words, as many as its start value has.
 
 A String parameter declared with ``choices`` (base.py: a law chosen by name) makes one variant
 per choice: the component built with that value, its model laid out in a struct of its own
 (``s->v<k>``) and its methods translated with the value as a constant; the parameters, inputs
 and internal state stay shared. The C dispatches on the value at run time; a value outside the
 choices is refused with base.py's sentence, and a choice whose law the translator refuses (it
-reads a file, say) is refused at run time naming the reason, so the other laws stay native. Any
-other String variable, or two choosing ones, is refused when the C is written.
+reads a file, say) is refused at run time naming the reason, so the other laws stay native.
 
 The methods translated are base.py's services as the component defines or inherits them:
 ``build_model``, ``check_inputs``, ``initialise``, ``advance``, ``evaluate`` and
@@ -33,7 +33,20 @@ from .intrinsics import table
 from .source import TranslationError
 from .statements import Statements
 from .translate import TranslatorCore, _is_object, from_python, func_of
-from .values import Array, Const, Dict, Obj, Scalar, Tuple, literal, same_shape
+from .values import (
+    Array,
+    Const,
+    Dict,
+    Obj,
+    Scalar,
+    Slot,
+    Text,
+    Tuple,
+    Vector,
+    literal,
+    same_shape,
+)
+from .vectors import CAPACITY, Vectors
 
 _C_TYPES = {"Real": "double", "Integer": "long", "Boolean": "bool"}
 _TYPE_CODES = {"Real": "GW_REAL", "Integer": "GW_INTEGER", "Boolean": "GW_BOOLEAN"}
@@ -41,15 +54,17 @@ _CAUSALITY_CODES = {Fmi2Causality.parameter: "GW_PARAMETER", Fmi2Causality.input
                     Fmi2Causality.output: "GW_OUTPUT"}
 
 
-class Translator(Statements, Expressions, TranslatorCore):
-    """The translator with its statements and expressions."""
+class Translator(Statements, Expressions, Vectors, TranslatorCore):
+    """The translator with its statements, expressions and run-time arrays."""
 
 
 ENTRIES = (("gw_build", "build_model", []), ("gw_check_inputs", "check_inputs", []),
            ("gw_initialise", "initialise", []), ("gw_advance", "advance", ["t", "h"]),
            ("gw_evaluate", "evaluate", []),
            ("gw_setup_experiment", "setup_experiment", ["start", "stop", "tolerance"]))
-STRING_SIZE = 256  # bytes kept of a choosing String parameter's value (choices are shorter)
+#: bytes a String parameter's text holds, its end included: CAPACITY numbers written by
+#: repr(float) (at most 24 characters and a space each) fit
+STRING_SIZE = 8192
 
 
 class Unit:
@@ -75,7 +90,8 @@ class Unit:
                 if example.choices(variable.name) and self.selector is None:
                     self.selector = (variable.name, example.choices(variable.name))
                 else:
-                    self.shared[variable.name] = Const(_Text(cls.__name__, variable.name))
+                    self.shared[variable.name] = Text(f"s->gw_text_{variable.name}",
+                                                      variable.name)
                 continue
             if kind not in _C_TYPES:
                 raise TranslationError(f"{cls.__name__}: the {kind} variable {variable.name} "
@@ -111,7 +127,7 @@ class Unit:
                                   self.shared[name]):
                     raise TranslationError(f"{self.cls.__name__}: the internal state {name} "
                                            f"differs in shape with {self.selector[0]} {choice!r}")
-            obj.fields["_model"] = self.layout(fields, prefix, example._model, "model")
+            obj.fields["_model"] = self.layout(fields, prefix, example._model, "model", slots=True)
             for name, value in vars(example).items():
                 if name not in obj.fields and name != "vars":
                     obj.fields[name] = from_python(value) if not _is_object(value) else \
@@ -140,10 +156,12 @@ class Unit:
         fields.append((ctype, unique, default))
         return Scalar(ctype, f"{prefix}{unique}", self.owner)
 
-    def layout(self, fields: list, prefix: str, value, path: str):
-        """The fields (added to ``fields``) holding a value of ``value``'s shape (module doc)."""
+    def layout(self, fields: list, prefix: str, value, path: str, slots: bool = False):
+        """The fields (added to ``fields``) holding a value of ``value``'s shape (module doc);
+        ``slots``: a 1-D numpy array becomes a Slot, laid out for the first value stored (of
+        its example's length, or a run-time array: vectors.py)."""
         def inner(v, p):
-            return self.layout(fields, prefix, v, p)
+            return self.layout(fields, prefix, v, p, slots)
 
         if isinstance(value, np.ndarray) and value.ndim == 0:
             value = value.item()
@@ -156,7 +174,12 @@ class Unit:
         if isinstance(value, (tuple, list)):
             return Tuple([inner(v, f"{path}_{i}") for i, v in enumerate(value)])
         if isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype.kind in "fib":
-            return Array([inner(v, f"{path}_{i}") for i, v in enumerate(value)])
+            fixed = lambda: Array([inner(v, f"{path}_{i}") for i, v in enumerate(value)])  # noqa: E731
+            if not slots:
+                return fixed()
+            owner = self.owner
+            return Slot(value, lambda stored: self._vector_field(fields, prefix, path, owner)
+                        if isinstance(stored, Vector) else fixed())
         if isinstance(value, dict) and all(isinstance(k, str) for k in value):
             return Dict({k: inner(v, f"{path}_{k}") for k, v in value.items()})
         if _is_object(value):
@@ -167,6 +190,13 @@ class Unit:
             raise TranslationError(f"{self.cls.__name__}: the {value.ndim}-dimensional array "
                                    f"{path} is not translated yet")
         return Const(value)
+
+    def _vector_field(self, fields: list, prefix: str, hint: str, owner) -> Vector:
+        """Struct fields of a run-time array: CAPACITY doubles and a length."""
+        data = self.field(fields, prefix, "double", hint, 0.0)
+        fields[-1] = (fields[-1][0], f"{fields[-1][1]}[{CAPACITY}]", None)
+        length = self.field(fields, prefix, "long", f"{hint}_length", 0)
+        return Vector("double", data.code, Scalar("long", length.code, owner))
 
     # -- the translated methods ---------------------------------------------------------
     def translator(self) -> Translator:
@@ -234,34 +264,38 @@ class Unit:
     @property
     def text(self) -> str:
         struct = [f"    {ctype} {name};" for ctype, name, _ in self.fields]
-        defaults = [f"    s->{name} = {default};" for _, name, default in self.fields]
+        defaults = [f"    s->{name} = {default};" for _, name, default in self.fields
+                    if default is not None]
         entries: list[str] = []
         for k, (choice, fields, translated) in enumerate(self.variants):
             if choice is None:
                 struct += [f"    {ctype} {name};" for ctype, name, _ in fields]
-                defaults += [f"    s->{name} = {default};" for _, name, default in fields]
+                defaults += [f"    s->{name} = {default};" for _, name, default in fields
+                             if default is not None]
                 entries += [text.replace(f"{entry}_0(", f"{entry}(", 1)
                             for entry, text in zip((e for e, _, _ in ENTRIES), translated.values())]
                 continue
             if fields:
                 struct.append("    struct {\n" + "\n".join(
                     f"        {ctype} {name};" for ctype, name, _ in fields) + f"\n    }} v{k};")
-                defaults += [f"    s->v{k}.{name} = {default};" for _, name, default in fields]
+                defaults += [f"    s->v{k}.{name} = {default};" for _, name, default in fields
+                             if default is not None]
             entries += list((translated or {}).values())
         rows = []
         for variable in self.variables:
             kind = type(variable).__name__
             if variable.causality == Fmi2Causality.output:
                 rows.append(f"    {{{variable.value_reference}, GW_REAL, GW_OUTPUT, 0, "
-                            f"{self.outputs.index(variable.name)}}},")
+                            f"{self.outputs.index(variable.name)}, {c_string(variable.name)}}},")
             elif kind == "String":
                 rows.append(f"    {{{variable.value_reference}, GW_STRING, GW_PARAMETER, "
-                            f"offsetof(gw_self, gw_text_{variable.name}), -1}},")
+                            f"offsetof(gw_self, gw_text_{variable.name}), -1, "
+                            f"{c_string(variable.name)}}},")
             else:
                 field = self.shared[variable.name].code[3:]
                 rows.append(f"    {{{variable.value_reference}, {_TYPE_CODES[kind]}, "
                             f"{_CAUSALITY_CODES[variable.causality]}, "
-                            f"offsetof(gw_self, {field}), -1}},")
+                            f"offsetof(gw_self, {field}), -1, {c_string(variable.name)}}},")
         names = ", ".join(f'"{n}"' for n in self.outputs) or "0"
         selector = [f"#define GW_STRING_SIZE {STRING_SIZE}"]
         struct += [f"    char gw_text_{name}[GW_STRING_SIZE];" for name, _ in self.texts]
@@ -315,17 +349,3 @@ GW_CHOOSE = ["""static void gw_choose(gw_self *s) {
     for (k = 0; k < GW_N_CHOICES; ++k)
         if (strcmp(GW_SELECTOR(s), gw_choices[k]) == 0) s->gw_choice = k;
 }"""]
-
-
-class _Text:
-    """A free-text String parameter in the translation: its value lives in the C only as text
-    (fmi2GetString gives it back), so physics that reads it (a file name, a table) is refused."""
-
-    def __init__(self, component: str, name: str):
-        self.where = f"{component}: the String parameter {name}"
-
-    def _refuse(self, *args):
-        raise TranslationError(f"{self.where} is read by the physics (text is not translated)")
-
-    __bool__ = __eq__ = __ne__ = __str__ = __len__ = __iter__ = __hash__ = __fspath__ = _refuse
-    __getattr__ = _refuse

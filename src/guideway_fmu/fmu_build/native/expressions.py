@@ -14,6 +14,10 @@ from .values import (
     Joined,
     Masked,
     Message,
+    Text,
+    Vector,
+    Word,
+    Words,
     Obj,
     Scalar,
     Tuple,
@@ -95,6 +99,8 @@ class Expressions:
                 raise self.error(f"index {key.value!r} of {describe(container)}") from None
         if isinstance(container, Const) and isinstance(key, Const):
             return from_python(container.value[key.value])
+        if isinstance(container, Vector):
+            return self.vector_item(container, key)
         if isinstance(container, Array) and isinstance(key, Array) and \
                 len(key.items) == len(container.items):
             return Masked(list(container.items), [self.truth(k) for k in key.items])
@@ -195,8 +201,13 @@ class Expressions:
             truth = self.truth(value)
             return Const(not truth.value) if isinstance(truth, Const) else \
                 Scalar("bool", f"(!{truth.code})")
+        if isinstance(node.op, ast.Invert):  # numpy's: logical not of booleans, ~ of integers
+            return self.invert(value)
         if isinstance(value, Const) and is_number(value.value):
             return Const(-value.value if isinstance(node.op, ast.USub) else +value.value)
+        if isinstance(value, Vector):
+            return self.vector_map(lambda v: self.binary(ast.Mult(), Const(
+                -1.0 if isinstance(node.op, ast.USub) else 1.0), v), value)
         if isinstance(value, Array):
             return Array([self.binary(ast.Mult(), Const(-1.0 if isinstance(node.op, ast.USub)
                                                         else 1.0), v) for v in value.items])
@@ -205,11 +216,23 @@ class Expressions:
             return Scalar("double" if s.ctype == "double" else "long", f"(-{s.code})")
         return s
 
+    def invert(self, value):
+        if isinstance(value, Array):
+            return Array([self.invert(v) for v in value.items])
+        if isinstance(value, Vector):
+            return self.vector_map(self.invert, value)
+        if isinstance(value, Const) and isinstance(value.value, (bool, int)):
+            return Const(not value.value if isinstance(value.value, bool) else ~value.value)
+        s = self.scalar(value)
+        if s.ctype == "double":
+            raise self.error("~ of a float")
+        return Scalar("bool", f"(!{s.code})") if s.ctype == "bool" else Scalar("long", f"(~{s.code})")
+
     def expr_BinOp(self, node):
         return self.binary(node.op, self.expr(node.left), self.expr(node.right))
 
     def binary(self, op, left, right):
-        if isinstance(left, Array) or isinstance(right, Array):
+        if isinstance(left, (Array, Vector)) or isinstance(right, (Array, Vector)):
             return self.elementwise(lambda a, b: self.binary(op, a, b), left, right)
         if isinstance(left, Tuple) and isinstance(op, ast.Mult) and isinstance(right, Const):
             return Tuple(left.items * right.value)
@@ -245,6 +268,8 @@ class Expressions:
 
     def elementwise(self, function, *operands):
         """``function`` applied element by element, numbers broadcast (numpy's rule for 1-D)."""
+        if any(isinstance(o, Vector) for o in operands):
+            return self.vector_map(function, *operands)
         lengths = {len(o.items) for o in operands if isinstance(o, Tuple)}
         if len(lengths) != 1:
             raise self.error(f"arrays of lengths {sorted(lengths)} do not broadcast")
@@ -258,7 +283,7 @@ class Expressions:
         for op, right_node in zip(node.ops, node.comparators):
             right = self.expr(right_node)
             term = self.compare(op, left, right)
-            if isinstance(term, Array):
+            if isinstance(term, (Array, Vector)):
                 if len(node.ops) > 1:
                     raise self.error("chained comparisons of arrays are not translated")
                 return term
@@ -273,7 +298,7 @@ class Expressions:
     def compare(self, op, left, right):
         kind = type(op)
         if kind not in (ast.Is, ast.IsNot, ast.In, ast.NotIn) and (
-                isinstance(left, Array) or isinstance(right, Array)):
+                isinstance(left, (Array, Vector)) or isinstance(right, (Array, Vector))):
             return self.elementwise(lambda a, b: self.compare(op, a, b), left, right)
         if kind in (ast.Is, ast.IsNot) and isinstance(left, Choice):
             return _either(left.condition, self.compare(op, left.first, right),
@@ -350,6 +375,8 @@ class Expressions:
                 parts.append(Const(text))
             elif isinstance(value, Message):
                 parts.extend(value.parts)
+            elif isinstance(value, (Text, Word)):
+                parts.append((value, spec, conversion))
             else:
                 parts.append((self.scalar(value), spec, conversion))
         if all(isinstance(p, Const) for p in parts):
@@ -379,7 +406,16 @@ class Expressions:
             return
         if isinstance(part, Scalar):
             part = (part, "", "")
-        value, spec, _ = part  # str and repr of a number are the same text
+        value, spec, conversion = part  # str and repr of a number are the same text
+        if isinstance(value, (Text, Word)):  # repr quotes it, as Python does plain ASCII text
+            quote = 'gw_msg_text(ctx, "\'");' if conversion == "r" else ""
+            if isinstance(value, Text):
+                code = value.code
+            else:
+                code = self.out.declare("char", "word", 128)
+                self.emit(f"gw_word({value.text.code}, {value.index}, {code}, sizeof {code});")
+            self.emit(f"{quote} gw_msg_text(ctx, {code}); {quote}".strip())
+            return
         if value.ctype == "bool":
             self.emit(f"gw_msg_text(ctx, {value.code} ? \"True\" : \"False\");")
         elif value.ctype == "long":
@@ -403,31 +439,52 @@ class Expressions:
 
     def expr_ListComp(self, node):
         """The items; under a condition known at run time only (a mask, an ``if``), each item
-        is (condition, item), which only str.join takes."""
+        is (condition, item), which only str.join takes. Over a run-time sequence (words, an
+        array) a run-time array (vectors.py)."""
+        first = node.generators[0]
+        sequence = self.expr(first.iter)  # Python evaluates it in the enclosing scope
+        if isinstance(sequence, (Words, Vector)):
+            if len(node.generators) > 1 or first.ifs:
+                raise self.error("a comprehension over a run-time sequence is translated with "
+                                 "one for and no if only")
+            outer = self.frame
+            self.frame = Frame(self, outer.node, outer.path, outer.globals, parent=outer)
+            self.frame.owner = outer.owner
+            try:
+                if isinstance(sequence, Words):
+                    return self.vector_of_words(sequence, first.target, node.elt)
+                return self.vector_map(lambda v: self._element(first.target, v, node.elt),
+                                       sequence)
+            finally:
+                self.frame = outer
         items = []
-        for when in self.comprehension(node.generators):
+        for when in self.comprehension(node.generators, sequence):
             item = self.expr(node.elt)
             items.append(item if when is None else (when, item))
         return Tuple(items)
 
     expr_GeneratorExp = expr_ListComp
 
-    def comprehension(self, generators):
+    def _element(self, target, value, element):
+        self.assign(target, value)
+        return self.expr(element)
+
+    def comprehension(self, generators, first=None):
         """Bind each combination of the generators' items in turn (unrolled), in the
-        comprehension's own scope."""
+        comprehension's own scope; ``first``: the first generator's sequence, evaluated."""
         outer = self.frame
         self.frame = Frame(self, outer.node, outer.path, outer.globals, parent=outer)
         self.frame.owner = outer.owner
         try:
-            yield from self._combinations(generators)
+            yield from self._combinations(generators, first=first)
         finally:
             self.frame = outer
 
-    def _combinations(self, generators, when=None):
+    def _combinations(self, generators, when=None, first=None):
         """Bind each item in turn; yields the run-time condition of the combination (a bool
         Scalar: its mask and ``if`` clauses that are not known when the C is written) or None."""
+        sequence = self.expr(generators[0].iter) if first is None else first
         first, rest = generators[0], generators[1:]
-        sequence = self.expr(first.iter)
         if isinstance(sequence, Masked):
             pairs = list(zip(sequence.items, sequence.mask))
         else:

@@ -30,6 +30,7 @@ typedef struct {
     char type, causality;
     size_t offset;   /* parameters and inputs: the field in gw_self */
     int output;      /* outputs: the index in the evaluated outputs */
+    const char *name;
 } gw_variable;
 
 static const gw_variable gw_variables[GW_N_VARIABLES]; /* the unit defines it after this file */
@@ -71,11 +72,18 @@ static const gw_variable *gw_find(fmi2ValueReference vr) {
 
 /* Store the text of a String variable (cut to GW_STRING_SIZE - 1 bytes); the law a choosing
  * one names is looked up. */
-static void gw_text(gw_instance *c, const gw_variable *v, const char *text) {
+static int gw_text(gw_instance *c, const gw_variable *v, const char *text) {
+    if (text && strlen(text) >= GW_STRING_SIZE) {
+        snprintf(c->ctx.message, sizeof c->ctx.message, "the text given to %s is longer than the "
+                 "native edition holds (%d bytes); take the python edition", v->name,
+                 GW_STRING_SIZE - 1);
+        return 1;
+    }
     snprintf(GW_FIELD(c, v, char), GW_STRING_SIZE, "%s", text ? text : "");
 #ifdef GW_N_CHOICES
     gw_choose(&c->state.self);
 #endif
+    return 0;
 }
 
 static void gw_changed(gw_instance *c, bool parameter) {
@@ -170,19 +178,33 @@ static int gw_description_path(const char *uri, char *path, size_t size) {
     return 0;
 }
 
-/* The text of attribute ``name`` (name="...") in [from, to) into ``out``: 0, or 1 if absent. */
+/* The text of attribute ``name`` (name="...", the XML entities of markup decoded) in
+ * [from, to) into ``out``: 0, 1 if absent, 2 if longer than ``size`` - 1 bytes. */
 static int gw_attribute(const char *from, const char *to, const char *name, char *out,
                         size_t size) {
-    size_t length = strlen(name);
+    static const char *const entities[][2] = {{"&amp;", "&"}, {"&lt;", "<"}, {"&gt;", ">"},
+                                              {"&quot;", "\""}, {"&apos;", "'"}};
+    size_t length = strlen(name), n = 0, e;
     const char *p, *end;
     for (p = from; p && p + length + 2 < to; ++p) {
         if (strncmp(p, name, length) || p[length] != '=' || p[length + 1] != '"'
             || (p > from && p[-1] != ' ' && p[-1] != '\n' && p[-1] != '\t')) continue;
         p += length + 2;
         end = memchr(p, '"', (size_t)(to - p));
-        if (!end || (size_t)(end - p) >= size) return 1;
-        memcpy(out, p, (size_t)(end - p));
-        out[end - p] = '\0';
+        if (!end) return 1;
+        while (p < end) {
+            const char *text = p++;
+            size_t step = 1;
+            for (e = 0; e < sizeof entities / sizeof entities[0]; ++e)
+                if (strncmp(text, entities[e][0], strlen(entities[e][0])) == 0) {
+                    text = entities[e][1];
+                    p += strlen(entities[e][0]) - 1;
+                    break;
+                }
+            if (n + step >= size) return 2;
+            out[n++] = *text;
+        }
+        out[n] = '\0';
         return 0;
     }
     return 1;
@@ -196,7 +218,7 @@ static int gw_apply_start(gw_instance *c, const gw_variable *v, const char *text
         if (end == text || *end) return 1;
         *GW_FIELD(c, v, double) = value;
     } else if (v->type == GW_STRING) {
-        gw_text(c, v, text);
+        return gw_text(c, v, text) ? 2 : 0;
     } else if (v->type == GW_INTEGER) {
         long value = strtol(text, &end, 10);
         if (end == text || *end) return 1;
@@ -215,12 +237,12 @@ static int gw_apply_start(gw_instance *c, const gw_variable *v, const char *text
  * edition instantiated outside an FMU. */
 static int gw_read_description(gw_instance *c, const char *resources, char *guid, size_t guid_size,
                                char *message, size_t size) {
-    char path[4096], text[128], name[256];
+    char path[4096], text[GW_STRING_SIZE], name[256];
     const char *at, *end;
     char *xml;
     long length;
     FILE *file;
-    int failed = 0;
+    int failed = 0, read;
     guid[0] = '\0';
     if (gw_description_path(resources, path, sizeof path) || !(file = fopen(path, "rb")))
         return 0;
@@ -239,12 +261,18 @@ static int gw_read_description(gw_instance *c, const char *resources, char *guid
         if (!(end = strstr(at, "</ScalarVariable>")) && !(end = strstr(at, "/>"))) break;
         if (gw_attribute(at, end, "valueReference", text, sizeof text)) continue;
         v = gw_find((fmi2ValueReference)strtoul(text, NULL, 10));
-        if (!v || v->causality == GW_OUTPUT || gw_attribute(at, end, "start", text, sizeof text))
-            continue;
-        if (gw_apply_start(c, v, text)) {
+        if (!v || v->causality == GW_OUTPUT) continue;
+        read = gw_attribute(at, end, "start", text, sizeof text);
+        if (read == 1) continue;
+        if (read == 2 || (read = gw_apply_start(c, v, text)) != 0) {
             if (gw_attribute(at, end, "name", name, sizeof name)) strcpy(name, "?");
-            snprintf(message, size, "%s: the start value \"%s\" of %s is not of its type",
-                     path, text, name);
+            if (read == 2)
+                snprintf(message, size, "%s: the start value of %s is longer than the native "
+                         "edition holds (%d bytes); take the python edition", path, name,
+                         GW_STRING_SIZE - 1);
+            else
+                snprintf(message, size, "%s: the start value \"%.200s\" of %s is not of its type",
+                         path, text, name);
             failed = 1;
         }
     }
@@ -427,7 +455,10 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
     size_t i;
     for (i = 0; i < n; ++i) {
         if (!gw_string((gw_instance *)c, vr[i])) return fmi2Error;
-        gw_text((gw_instance *)c, gw_find(vr[i]), v[i]);
+        if (gw_text((gw_instance *)c, gw_find(vr[i]), v[i])) {
+            gw_report((gw_instance *)c, fmi2Error, ((gw_instance *)c)->ctx.message);
+            return fmi2Error;
+        }
     }
     if (n) gw_changed((gw_instance *)c, true);
     return fmi2OK;

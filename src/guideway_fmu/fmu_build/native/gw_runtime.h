@@ -27,6 +27,47 @@ static void gw_msg_text(gw_ctx *ctx, const char *text) {
     ctx->message[ctx->length] = '\0';
 }
 
+/* Words of a text as Python's str.split() splits ASCII text: runs of whitespace separate. */
+static long gw_words(const char *text) {
+    long n = 0;
+    while (*text) {
+        while (*text && strchr(" \t\n\r\v\f", *text)) ++text;
+        if (!*text) break;
+        ++n;
+        while (*text && !strchr(" \t\n\r\v\f", *text)) ++text;
+    }
+    return n;
+}
+
+/* Word k of ``text`` (str.split()) copied into ``out`` (cut to ``size`` - 1 bytes). */
+static void gw_word(const char *text, long k, char *out, size_t size) {
+    size_t n = 0;
+    for (;;) {
+        while (*text && strchr(" \t\n\r\v\f", *text)) ++text;
+        if (!*text) break;
+        if (k-- == 0) {
+            while (*text && !strchr(" \t\n\r\v\f", *text) && n + 1 < size) out[n++] = *text++;
+            break;
+        }
+        while (*text && !strchr(" \t\n\r\v\f", *text)) ++text;
+    }
+    out[n] = '\0';
+}
+
+/* float(word) of word k: 0, or 1 when Python's float() refuses it (the value then NaN). C's
+ * strtod reads hexadecimal numbers too, which float() refuses; digit underscores, which
+ * float() accepts, are refused here. */
+static int gw_word_double(const char *text, long k, double *value) {
+    char word[128], *end;
+    gw_word(text, k, word, sizeof word);
+    *value = strtod(word, &end);
+    if (end == word || *end || strchr(word, 'x') || strchr(word, 'X')) {
+        *value = NAN;
+        return 1;
+    }
+    return 0;
+}
+
 static void gw_msg_long(gw_ctx *ctx, long value) {
     char text[32];
     snprintf(text, sizeof text, "%ld", value);
@@ -113,5 +154,27 @@ static long gw_pyminl(long a, long b) { return b < a ? b : a; }
 static double gw_degrees(double x) { return x * (180.0 / 3.14159265358979323846); }
 static double gw_radians(double x) { return x * (3.14159265358979323846 / 180.0); }
 static long gw_to_long(double x) { return isfinite(x) ? (long)x : 0; }
+
+/* numpy.interp(x, xp, fp) of increasing nodes xp[0..n-1] (n >= 1): the end values held outside,
+ * NaN at a NaN x, the same arithmetic as numpy's (slope from the left node, then the right one
+ * where that gives NaN). */
+static double gw_interp(double x, long n, const double *xp, const double *fp) {
+    long lo = 0, hi = n - 1, mid;
+    double slope, r;
+    if (isnan(x)) return x;
+    if (x < xp[0]) return fp[0];
+    if (x >= xp[n - 1]) return fp[n - 1];
+    while (hi - lo > 1) {
+        mid = lo + (hi - lo) / 2;
+        if (x >= xp[mid]) lo = mid; else hi = mid;
+    }
+    slope = (fp[lo + 1] - fp[lo]) / (xp[lo + 1] - xp[lo]);
+    r = slope * (x - xp[lo]) + fp[lo];
+    if (isnan(r)) {
+        r = slope * (x - xp[lo + 1]) + fp[lo + 1];
+        if (isnan(r) && fp[lo] == fp[lo + 1]) r = fp[lo];
+    }
+    return r;
+}
 
 #endif

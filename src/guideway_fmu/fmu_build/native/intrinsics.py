@@ -14,7 +14,21 @@ import math
 import numpy as np
 
 from .translate import from_python
-from .values import Array, Const, Dict, Masked, Obj, Scalar, Tuple, describe, is_number
+from .values import (
+    Array,
+    Const,
+    Dict,
+    Masked,
+    Obj,
+    Scalar,
+    Text,
+    Tuple,
+    Vector,
+    Word,
+    Words,
+    describe,
+    is_number,
+)
 
 # Python function -> C function of one double
 _UNARY = {
@@ -51,7 +65,7 @@ def _numeric(function, make):
     def handler(tr, args, kwargs):
         if _known(function, args, kwargs):
             return _fold(function, args, kwargs)
-        if function in _ELEMENTWISE and any(isinstance(a, Array) for a in args):
+        if function in _ELEMENTWISE and any(isinstance(a, (Array, Vector)) for a in args):
             return tr.elementwise(lambda *row: handler(tr, list(row), kwargs), *args)
         return make(tr, [tr.scalar(a) if not isinstance(a, (Tuple, Dict)) else a for a in args],
                     kwargs)
@@ -75,7 +89,7 @@ def _rounding(c_name):
     return lambda tr, args, kwargs: Scalar("long", f"gw_to_long({c_name}({args[0].code}))")
 
 
-def _float(tr, args, kwargs):
+def _to_double(tr, args, kwargs):
     return Scalar("double", f"((double){args[0].code})")
 
 
@@ -114,6 +128,8 @@ def _sum(tr, args, kwargs):
 
 def _asarray(tr, args, kwargs):
     value = args[0]
+    if isinstance(value, Vector):
+        return value
     if isinstance(value, Tuple):
         return Array([_asarray(tr, [item], {}) for item in value.items])
     if isinstance(value, Const) and is_number(value.value):
@@ -126,6 +142,8 @@ def _asarray(tr, args, kwargs):
 def _reduce_all(is_all):
     def handler(tr, args, kwargs):
         value = args[0]
+        if isinstance(value, Vector):
+            return tr.vector_reduce(value, is_all)
         items = tr.iterate(value) if isinstance(value, (Tuple, Dict)) else [value]
         terms = [tr.truth(i) for i in items]
         if any(isinstance(t, Const) and t.value != is_all for t in terms):
@@ -174,6 +192,8 @@ def _getattr(tr, args, kwargs):
 
 def _len(tr, args, kwargs):
     value = args[0]
+    if isinstance(value, Vector):
+        return value.length
     if isinstance(value, (Tuple, Dict)):
         return Const(len(value.items))
     if isinstance(value, Const):
@@ -249,6 +269,93 @@ def _divide(tr, args, kwargs):
     return _where(tr, [kwargs["where"], quotient, kwargs.get("out", Const(0.0))], {})
 
 
+def _str(tr, args, kwargs):
+    if isinstance(args[0], Text):
+        return args[0]
+    if _known(str, args, kwargs):
+        return _fold(str, args, kwargs)
+    raise tr.error(f"str of {describe(args[0])} is not translated")
+
+
+def split(tr, text: Text, args, kwargs):
+    """``text.split()``: its words, counted at run time."""
+    if args or kwargs:
+        raise tr.error("str.split is translated without arguments only")
+    count = tr.out.declare("long", "words")
+    tr.emit(f"{count} = gw_words({text.code});")
+    return Words(text, Scalar("long", count))
+
+
+def _float_of_word(tr, word: Word) -> Scalar:
+    """float(word), refused as Python refuses it."""
+    value, failed = tr.out.declare("double", "number"), tr.out.declare("int", "refused")
+    tr.emit(f"{failed} = gw_word_double({word.text.code}, {word.index}, &{value});")
+    tr.emit(f"if ({failed}) {{")
+    tr.fail([Const("could not convert string to float: "), (word, "", "r")], ValueError)
+    tr.emit("}")
+    return Scalar("double", value)
+
+
+def _float(tr, args, kwargs):
+    if isinstance(args[0], Word):
+        return _float_of_word(tr, args[0])
+    return _numeric(float, _to_double)(tr, args, kwargs)
+
+
+def _linspace(tr, args, kwargs):
+    """np.linspace(start, stop, num) with num known: numpy's arithmetic (k step + start, the
+    step delta / (num - 1); where it is 0, k / (num - 1) delta + start; the last node stop)."""
+    start, stop, num = (list(args) + [kwargs.get("num")])[:3]
+    if isinstance(num, Scalar) and num.ctype == "long":
+        return tr.linspace(tr.scalar(start), tr.scalar(stop), num)
+    if not (isinstance(num, Const) and isinstance(num.value, (int, np.integer)) and num.value >= 2):
+        raise tr.error("np.linspace is translated for at least 2 nodes known when the C is written")
+    n = int(num.value)
+    start, stop = tr.scalar(start), tr.scalar(stop)
+    delta, step = tr.out.declare("double", "delta"), tr.out.declare("double", "step")
+    tr.emit(f"{delta} = (double){stop.code} - (double){start.code};")
+    tr.emit(f"{step} = {delta} / {float(n - 1)!r};")
+    nodes = [Scalar("double", f"(({step} == 0.0) ? ({float(k)!r} / {float(n - 1)!r}) * {delta} "
+                              f": {float(k)!r} * {step}) + (double){start.code}")
+             for k in range(n - 1)]
+    return Array([*(tr.variable(node, tr.frame) for node in nodes), Scalar("double", f"((double){stop.code})")])
+
+
+def _interp(tr, args, kwargs):
+    x, xp, fp = args
+    if isinstance(x, Vector):
+        return tr.vector_map(lambda v: _interp(tr, [v, xp, fp], {}), x)
+    if isinstance(xp, Vector) or isinstance(fp, Vector):
+        xp, fp = (tr.fixed_to_vector(v) if isinstance(v, Array) else v for v in (xp, fp))
+        tr.emit(f"if ({xp.length.code} != {fp.length.code} || {xp.length.code} < 1) {{")
+        tr.fail([Const("fp and xp are not of the same length.")], ValueError)
+        tr.emit("}")
+        return Scalar("double", f"gw_interp({tr.scalar(x).code}, {xp.length.code}, {xp.data}, "
+                                f"{fp.data})")
+    if kwargs or not (isinstance(xp, Array) and isinstance(fp, Array)
+                      and len(xp.items) == len(fp.items)):
+        raise tr.error("np.interp is translated for node and value arrays of one length")
+    if isinstance(x, Array):
+        return tr.elementwise(lambda v: _interp(tr, [v, xp, fp], {}), x)
+    n = len(xp.items)
+    tables = []
+    for values in (xp, fp):
+        name = tr.out.declare("double", "table", n)
+        for k, v in enumerate(values.items):
+            tr.emit(f"{name}[{k}] = {tr.scalar(v).code};")
+        tables.append(name)
+    return Scalar("double", f"gw_interp({tr.scalar(x).code}, {n}L, {tables[0]}, {tables[1]})")
+
+
+def _diff(tr, args, kwargs):
+    value = args[0]
+    if isinstance(value, Vector) and not kwargs:
+        return tr.diff(value)
+    if kwargs or not isinstance(value, Array):
+        raise tr.error("np.diff is translated for a 1-D array only")
+    return Array([tr.binary(ast.Sub(), b, a) for a, b in zip(value.items, value.items[1:])])
+
+
 def _ravel(tr, args, kwargs):
     value = args[0]
     if isinstance(value, (Array, Masked)):
@@ -309,7 +416,8 @@ def table() -> dict:
     handlers.update({
         math.floor: _numeric(math.floor, _rounding("floor")),
         math.ceil: _numeric(math.ceil, _rounding("ceil")),
-        builtins.float: _numeric(float, _float), np.float64: _numeric(np.float64, _float),
+        builtins.float: _float, np.float64: _numeric(np.float64, _to_double),
+        builtins.str: _str, np.linspace: _linspace, np.interp: _interp, np.diff: _diff,
         builtins.int: _numeric(int, _int), builtins.abs: _numeric(abs, _abs),
         builtins.max: _numeric(max, _extreme("gw_pymax", "gw_pymaxl")),
         builtins.min: _numeric(min, _extreme("gw_pymin", "gw_pyminl")),

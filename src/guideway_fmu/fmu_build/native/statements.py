@@ -13,6 +13,7 @@ from .values import (
     Message,
     Obj,
     Scalar,
+    Tuple,
     describe,
     is_number,
 )
@@ -103,9 +104,7 @@ class Statements:
             raise self.error(f"raise of {describe(exc)}")
         message = exc.fields["message"]
         parts = message.parts if isinstance(message, Message) else [message]
-        if exc.cls.__name__ not in ("ValueError", "RuntimeError"):  # as base._report words them
-            parts = [Const(f"{exc.cls.__name__}: "), *parts]
-        self.fail(parts)
+        self.fail(parts, exc.cls)
         self.left = True
 
     def stmt_FunctionDef(self, node):
@@ -274,12 +273,52 @@ class Statements:
     def stmt_Assert(self, node):
         pass  # asserts state what the code already guarantees; python -O drops them too
 
-    def fail(self, parts: list) -> None:
-        """Write the message ``parts`` into the context and leave by the failure exit."""
+    def fail(self, parts: list, cls: type = ValueError) -> None:
+        """Raise ``cls`` with the message ``parts``: written into the context, then on to the
+        innermost handler of a try statement that catches it, else out by the failure exit (the
+        message then starts with the class's name unless it is ValueError or RuntimeError, as
+        base._report words it)."""
+        target = next((label for handlers in reversed(self.catching)
+                       for classes, label in handlers if issubclass(cls, classes)), None)
+        if target is None and cls.__name__ not in ("ValueError", "RuntimeError"):
+            parts = [Const(f"{cls.__name__}: "), *parts]
         self.emit("gw_msg_clear(ctx);")
         for part in parts:
             self.message_part(part)
-        self.emit("goto gw_fail;")
+        self.emit(f"goto {target or 'gw_fail'};")
+
+    def stmt_Try(self, node):
+        """try/except whose handlers leave (raise or return): a failure in the body that a
+        handler catches goes to it (:meth:`fail`), exceptions being known where raised."""
+        if node.orelse or node.finalbody:
+            raise self.error("try ... else or finally is not translated")
+        handlers = []
+        for handler in node.handlers:
+            caught = self.expr(handler.type) if handler.type is not None else Const(Exception)
+            classes = tuple(c.value for c in (caught.items if isinstance(caught, Tuple)
+                                              else [caught]) if isinstance(c, Const))
+            if handler.name or not classes or not all(isinstance(c, type) for c in classes):
+                raise self.error("an except clause is translated with exception classes and no "
+                                 "name only")
+            handlers.append((classes, self.fresh("caught")))
+        done = self.fresh("tried")
+        self.catching.append(handlers)
+        try:
+            self.block(node.body)
+        finally:
+            self.catching.pop()
+        self.left = False
+        self.emit(f"goto {done};")
+        for handler, (_, label) in zip(node.handlers, handlers):
+            self.emit(f"{label}: ;")
+            before = dict(self.frame.locals)
+            self.block(handler.body)
+            if not self.left:
+                raise self.error("an except clause that does not raise or return is not "
+                                 "translated")
+            self.left = False
+            self.frame.locals = before
+        self.emit(f"{done}: ;")
 
 
 #: a for loop over a range known when the C is written is unrolled up to this many passes (its

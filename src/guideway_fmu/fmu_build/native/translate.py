@@ -30,6 +30,9 @@ from .values import (
     Func,
     Joined,
     Message,
+    Slot,
+    Text,
+    Vector,
     Obj,
     Scalar,
     Tuple,
@@ -83,9 +86,11 @@ class Emitter:
         self.counter += 1
         return f"{''.join(c if c.isalnum() else '_' for c in hint)[:24]}_{self.counter}"
 
-    def declare(self, ctype: str, hint: str) -> str:
+    def declare(self, ctype: str, hint: str, length: int | None = None) -> str:
+        """A new local C variable (an array of ``length`` where given), zero at the start."""
         name = self.fresh(hint)
-        self.declarations.append(f"    {ctype} {name} = 0;")
+        self.declarations.append(f"    {ctype} {name} = 0;" if length is None else
+                                 f"    {ctype} {name}[{length}] = {{0}};")
         return name
 
     def capture(self) -> list[str]:
@@ -173,6 +178,7 @@ class TranslatorCore:
         self.frame: Frame | None = None
         self.node: ast.AST | None = None
         self.left = False  # the statement just translated always leaves (Statements.block)
+        self.catching: list[list[tuple[tuple[type, ...], str]]] = []  # open try statements
 
     # -- helpers ------------------------------------------------------------------------
     def fresh(self, hint: str) -> str:
@@ -238,7 +244,11 @@ class TranslatorCore:
             for key in target.fields:
                 if key not in value.fields:
                     raise self.error(f"{what}.{key} is missing")
+                if isinstance(target.fields[key], Slot):
+                    target.fields[key] = target.fields[key].make(value.fields[key])
                 self.store(target.fields[key], value.fields[key], f"{what}.{key}")
+        elif isinstance(target, Vector):
+            self.store_vector(target, value)
         elif isinstance(target, Func) and isinstance(value, Func) and \
                 target.function.node is value.function.node:
             for name, cell in target.function.cells.items():
@@ -283,6 +293,8 @@ class TranslatorCore:
     # -- attributes ---------------------------------------------------------------------
     def attribute(self, value, name: str):
         if isinstance(value, Obj):
+            if isinstance(value.fields.get(name), Slot):  # read before stored: of its example
+                value.fields[name] = value.fields[name].make(None)
             if name in value.fields:
                 return value.fields[name]
             handler = self.methods.get((value.cls, name)) or next(
@@ -309,6 +321,11 @@ class TranslatorCore:
                 raise self.error(f"{describe(value)} has no attribute {name}") from None
         if isinstance(value, Dict) and name in ("items", "keys", "values", "get"):
             return Const(_Bound(_DICT_METHODS[name], value))
+        if isinstance(value, Text) and name == "split":
+            from .intrinsics import split
+            return Const(_Bound(split, value))
+        if isinstance(value, Vector) and name in ("shape", "ndim", "size"):
+            return {"shape": Tuple([value.length]), "ndim": Const(1), "size": value.length}[name]
         if isinstance(value, (Array, Scalar)) and name in ("shape", "ndim", "size"):
             shape = (len(value.items),) if isinstance(value, Array) else ()
             return Const({"shape": shape, "ndim": len(shape), "size": math.prod(shape)}[name])

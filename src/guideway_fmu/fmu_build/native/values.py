@@ -90,6 +90,54 @@ class Message:
 
 
 @dataclass
+class Text:
+    """A String parameter's text, held in the C (``code``: its char buffer); the physics may
+    split it into words and read numbers from them, nothing else."""
+
+    code: str
+    name: str
+
+
+@dataclass
+class Word:
+    """Word ``index`` (a C expression) of a :class:`Text` split as str.split() splits."""
+
+    text: Text
+    index: str
+
+
+@dataclass
+class Words:
+    """``text.split()``: ``count`` (a long Scalar) words, known at run time."""
+
+    text: Text
+    count: Scalar
+
+    def word(self, k: str) -> Word:
+        return Word(self.text, k)
+
+
+@dataclass
+class Vector:
+    """A 1-D array of run-time length: ``length`` (a long Scalar) numbers of ``ctype`` ("double"
+    or "bool") in the C array ``data`` (doubles; vectors.py)."""
+
+    ctype: str
+    data: str
+    length: Scalar
+
+
+@dataclass
+class Slot:
+    """A numpy array a model holds, laid out when the first value is stored into it: struct
+    fields of its length (an :class:`Array`) or of a run-time array (a :class:`Vector`).
+    ``make(value)`` lays it out for ``value``."""
+
+    example: object
+    make: object
+
+
+@dataclass
 class Masked:
     """``array[mask]`` with a mask known at run time only: the items where it holds, of a length
     unknown when the C is written, so only a message may list them (comprehension, str.join)."""

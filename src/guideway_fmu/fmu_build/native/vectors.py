@@ -1,0 +1,140 @@
+"""Arrays whose length is known at run time only: the numbers a String parameter's words give
+(a factor table), and what numpy makes of them.
+
+A :class:`~.values.Vector` is a C array of ``CAPACITY`` numbers and a length; numpy's
+element-by-element operations, reductions, indexing by a known position, ``np.linspace`` with
+a run-time count, ``np.interp`` and ``np.diff`` become C loops over it. More numbers than the
+capacity, and arrays of different lengths meeting, are refused at run time with numpy's words
+or the capacity named. A model holding a Vector keeps it in its struct (component.py lays out
+a numpy array as a :class:`~.values.Slot` that takes the first value stored into it).
+"""
+from __future__ import annotations
+
+import ast
+import contextlib
+
+from .values import Array, Const, Scalar, Tuple, Vector, Words, describe
+
+CAPACITY = 256  # numbers a run-time array holds at most
+
+
+class Vectors:
+    """The translator's operations on run-time arrays (a mixin of the translator)."""
+
+    def new_vector(self, ctype: str, length: str) -> Vector:
+        """A fresh local array of ``ctype`` numbers (kept as doubles) and ``length`` (a C
+        expression; more than CAPACITY is refused)."""
+        data = self.out.declare("double", "array", CAPACITY)
+        n = self.out.declare("long", "length")
+        self.emit(f"{n} = {length};")
+        self.emit(f"if ({n} > {CAPACITY}L) {{")
+        self.fail([Const("an array of "), Scalar("long", n), Const(
+            f" numbers is longer than the native edition holds ({CAPACITY}); take the python "
+            "edition")], RuntimeError)
+        self.emit("}")
+        return Vector(ctype, data, Scalar("long", n))
+
+    @contextlib.contextmanager
+    def counting(self, length: Scalar):
+        """Emit ``for (k = 0; k < length; ++k) { ... }`` around the block; yields k's C name."""
+        k = self.out.declare("long", "k")
+        self.emit(f"for ({k} = 0; {k} < {length.code}; ++{k}) {{")
+        self.out.depth += 1
+        try:
+            yield k
+        finally:
+            self.out.depth -= 1
+            self.emit("}")
+
+    def element(self, vector: Vector, k: str) -> Scalar:
+        """Element k (a C expression); a bool array keeps 0 and 1 as doubles."""
+        if vector.ctype == "bool":
+            return Scalar("bool", f"({vector.data}[{k}] != 0.0)")
+        return Scalar("double", f"{vector.data}[{k}]")
+
+    def vector_map(self, function, *operands) -> Vector:
+        """``function`` of the elements (numbers broadcast), into a new run-time array."""
+        vectors = [o for o in operands if isinstance(o, Vector)]
+        if any(isinstance(o, (Tuple, Words)) for o in operands):
+            raise self.error("a run-time array meets an array of fixed length")
+        length = vectors[0].length
+        for other in vectors[1:]:
+            self.emit(f"if ({other.length.code} != {length.code}) {{")
+            self.fail([Const("operands could not be broadcast together with shapes ("),
+                       length, Const(",) ("), other.length, Const(",) ")], ValueError)
+            self.emit("}")
+        out = self.new_vector("double", length.code)
+        with self.counting(length) as k:
+            row = [self.element(o, k) if isinstance(o, Vector) else o for o in operands]
+            value = self.scalar(function(*row))
+            out.ctype = value.ctype if value.ctype == "bool" else "double"
+            self.emit(f"{out.data}[{k}] = (double){value.code};")
+        return out
+
+    def vector_reduce(self, vector: Vector, is_all: bool) -> Scalar:
+        result = self.out.declare("bool", "all" if is_all else "any")
+        self.emit(f"{result} = {1 if is_all else 0};")
+        with self.counting(vector.length) as k:
+            item = self.element(vector, k)
+            test = f"!{item.code}" if is_all else item.code  # a double array: != 0 is true
+            self.emit(f"if ({test}) {{ {result} = {0 if is_all else 1}; break; }}")
+        return Scalar("bool", result)
+
+    def vector_item(self, vector: Vector, index) -> Scalar:
+        """``vector[index]`` at a known position (negative from the end), IndexError outside."""
+        if not (isinstance(index, Const) and isinstance(index.value, int)):
+            raise self.error(f"indexing a run-time array by {describe(index)} is not translated")
+        position = (f"{index.value}L" if index.value >= 0 else
+                    f"({vector.length.code} - {-index.value}L)")
+        self.emit(f"if ({position} < 0 || {position} >= {vector.length.code}) {{")
+        self.fail([Const(f"index {index.value} is out of bounds for axis 0 with size "),
+                   vector.length], IndexError)
+        self.emit("}")
+        value = self.out.declare(vector.ctype, "item")
+        self.emit(f"{value} = {self.element(vector, position).code};")
+        return Scalar(vector.ctype, value)
+
+    def vector_of_words(self, words: Words, target: ast.AST, element: ast.AST) -> Vector:
+        """``[element for target in words]``: one number a word, in a loop."""
+        out = self.new_vector("double", words.count.code)
+        with self.counting(out.length) as k:
+            self.assign(target, words.word(k))
+            value = self.scalar(self.expr(element))
+            self.emit(f"{out.data}[{k}] = {value.code};")
+        return out
+
+    def linspace(self, start: Scalar, stop: Scalar, num: Scalar) -> Vector:
+        """np.linspace(start, stop, num) with num known at run time (intrinsics._linspace has
+        numpy's arithmetic)."""
+        out = self.new_vector("double", num.code)
+        n, delta, step = out.length.code, self.out.declare("double", "delta"), \
+            self.out.declare("double", "step")
+        self.emit(f"{delta} = (double){stop.code} - (double){start.code};")
+        self.emit(f"{step} = {delta} / (double)({n} - 1);")
+        with self.counting(out.length) as k:
+            self.emit(f"{out.data}[{k}] = ({n} > 1 && {step} == 0.0 ? ((double){k} / "
+                      f"(double)({n} - 1)) * {delta} : (double){k} * ({n} > 1 ? {step} : "
+                      f"{delta})) + (double){start.code};")
+        self.emit(f"if ({n} > 1) {out.data}[{n} - 1] = (double){stop.code};")
+        return out
+
+    def diff(self, vector: Vector) -> Vector:
+        out = self.new_vector(vector.ctype, f"({vector.length.code} > 0 ? "
+                                            f"{vector.length.code} - 1 : 0)")
+        with self.counting(out.length) as k:
+            self.emit(f"{out.data}[{k}] = {vector.data}[{k} + 1] - {vector.data}[{k}];")
+        return out
+
+    def store_vector(self, target: Vector, value) -> None:
+        """Copy the run-time array ``value`` into ``target`` (a struct's)."""
+        if not isinstance(value, Vector):
+            raise self.error(f"a run-time array cannot become {describe(value)}")
+        self.emit(f"{target.length.code} = {value.length.code};")
+        with self.counting(value.length) as k:
+            self.emit(f"{target.data}[{k}] = {value.data}[{k}];")
+
+    def fixed_to_vector(self, array: Array) -> Vector:
+        out = self.new_vector("double", f"{len(array.items)}L")
+        for k, item in enumerate(array.items):
+            self.emit(f"{out.data}[{k}] = {self.scalar(item).code};")
+        return out
