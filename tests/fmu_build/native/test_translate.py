@@ -2,6 +2,7 @@
 compared with the Python function it was translated from, on inputs that take every branch."""
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -77,13 +78,70 @@ def while_loop(x, tolerance):
     return guess + 1e-3 * count
 
 
+def run_time_arrays(x, n):
+    nodes = np.linspace(-1.0, 2.0, int(n))
+    values = np.sin(nodes) * x
+    rising = ~(np.diff(values) <= 0.0)
+    if not np.any(rising):
+        return -1.0
+    return (float(np.interp(0.3 * x, nodes, values)) + values[-1] + values[0] * 1e-3
+            + float(np.all(np.isfinite(values))) + 1e-4 * len(nodes) + 1e-5 * nodes.size)
+
+
+def shapes_and_tuples(x, y):
+    v = np.array([x, y])
+    if v.shape != (2,) or (x, y) == (1.5, y) or v.ndim != 1:
+        return -x
+    return x + y
+
+
+class Bearing:
+    def __init__(self, radius):
+        self.radius = radius
+
+    @functools.cached_property
+    def area(self):
+        return math.pi * self.radius ** 2
+
+
+@functools.lru_cache(maxsize=4)
+def _scaled(k):
+    return 2.0 * k
+
+
+def cached(x, y):
+    return Bearing(x).area + _scaled(y)
+
+
+def caught(x, y):
+    try:
+        if x < 0.0:
+            raise ValueError("negative")
+        value = math.sqrt(x)
+    except (ValueError, TypeError):
+        raise ValueError(f"x must be >= 0, got {x!r}") from None
+    return value + y
+
+
+def masked_message(x, y):
+    d = np.array([x, y, x + y])
+    bad = ~(d > 0.0)
+    if np.any(bad):
+        raise ValueError(f"not positive: {', '.join(f'{v:.3g}' for v in d[bad])} ({(x, y)!r})")
+    return float(np.sum(d))
+
+
 CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
          (branches_merge, [(2.0, 1.0), (-2.0, 1.0), (0.5, 1.0)]),
          (optional_object, [(2e-6, 1e6), (2e-6, 0.0), (-1.0, 3.0)]),
          (comprehension_scope, [(1.0, 2.0), (-3.0, 0.25)]),
          (raises_with_message, [(4.0, 1.0), (0.0, -2.0)]),
          (arrays, [(0.3, -2.0), (0.0, 5.0)]),
-         (while_loop, [(2.0, 1e-12), (1e6, 1e-9), (0.25, 1e-10)])]
+         (while_loop, [(2.0, 1e-12), (1e6, 1e-9), (0.25, 1e-10)]),
+         (run_time_arrays, [(1.0, 2.0), (2.5, 7.0), (-0.5, 40.0), (1.0, 1.0), (0.7, 256.0)]),
+         (shapes_and_tuples, [(1.0, 2.0), (1.5, 2.0)]),
+         (cached, [(0.5, 3.0)]),
+         (caught, [(4.0, 1.0)])]
 
 
 @pytest.mark.parametrize("function, inputs", CASES, ids=[c[0].__name__ for c in CASES])
@@ -101,6 +159,29 @@ def test_raise_carries_the_python_message_word_for_word():
         with pytest.raises(ValueError) as native:
             c(x, y)
         assert str(native.value) == str(python.value)
+
+
+@pytest.mark.parametrize("x, y", [(-1.5, 2.0), (1.0, -3.25), (-1.0, -2.0), (1.0, -1.0)])
+def test_a_message_lists_the_items_a_run_time_mask_selects_as_python_does(x, y):
+    with pytest.raises(ValueError) as python:
+        masked_message(x, y)
+    with pytest.raises(ValueError) as native:
+        compiled(masked_message, 2)(x, y)
+    assert str(native.value) == str(python.value)
+
+
+def test_an_exception_a_handler_catches_is_replaced_by_its_own_as_in_python():
+    c = compiled(caught, 2)
+    with pytest.raises(ValueError, match=r"^x must be >= 0, got -2\.0$"):
+        c(-2.0, 1.0)
+
+
+def test_a_run_time_array_longer_than_the_capacity_is_refused_naming_it():
+    from guideway_fmu.fmu_build.native.vectors import CAPACITY
+    c = compiled(run_time_arrays, 2)
+    with pytest.raises(ValueError, match=f"an array of {CAPACITY + 1} numbers is longer than "
+                                         f"the native edition holds \\({CAPACITY}\\)"):
+        c(1.0, CAPACITY + 1.0)
 
 
 def test_float_repr_matches_python_on_random_and_edge_doubles():

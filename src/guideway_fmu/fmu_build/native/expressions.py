@@ -14,13 +14,13 @@ from .values import (
     Joined,
     Masked,
     Message,
+    Obj,
+    Scalar,
     Text,
+    Tuple,
     Vector,
     Word,
     Words,
-    Obj,
-    Scalar,
-    Tuple,
     describe,
     is_number,
     literal,
@@ -322,12 +322,33 @@ class Expressions:
             return Const(found == (kind is ast.In))
         if isinstance(left, Const) and isinstance(right, Const):
             return Const(_FOLD[kind](left.value, right.value))
+        if kind in (ast.Eq, ast.NotEq) and (_is_tuple(left) or _is_tuple(right)):
+            equal = self.tuples_equal(left, right)
+            if isinstance(equal, Const):
+                return Const(equal.value == (kind is ast.Eq))
+            return equal if kind is ast.Eq else Scalar("bool", f"(!{equal.code})")
         if kind in (ast.Eq, ast.NotEq) and isinstance(left, Const) != isinstance(right, Const):
             known = left if isinstance(left, Const) else right
             if not is_number(known.value):  # a number is never equal to a string or None
                 return Const(kind is ast.NotEq)
         a, b = self.scalar(left), self.scalar(right)
         return Scalar("bool", f"({a.code} {_C[kind]} {b.code})")
+
+    def tuples_equal(self, left, right):
+        """``left == right`` of tuples (a known tuple or a Tuple of values): item by item."""
+        left, right = (from_python(v.value) if isinstance(v, Const) else v for v in (left, right))
+        if not (type(left) is Tuple and type(right) is Tuple) or \
+                len(left.items) != len(right.items):
+            return Const(False)
+        codes = []
+        for a, b in zip(left.items, right.items):
+            term = self.compare(ast.Eq(), a, b)
+            if isinstance(term, Const):
+                if not term.value:
+                    return Const(False)
+            else:
+                codes.append(term.code)
+        return Scalar("bool", "(" + " && ".join(codes) + ")") if codes else Const(True)
 
     def truth(self, value):
         """A condition: Const(bool) when known, else a Scalar bool."""
@@ -377,11 +398,28 @@ class Expressions:
                 parts.extend(value.parts)
             elif isinstance(value, (Text, Word)):
                 parts.append((value, spec, conversion))
+            elif type(value) is Tuple and not spec:  # a tuple's str is its repr
+                parts.extend(self.tuple_repr(value))
             else:
                 parts.append((self.scalar(value), spec, conversion))
         if all(isinstance(p, Const) for p in parts):
             return Const("".join(p.value for p in parts))
         return Message(parts)
+
+    def tuple_repr(self, value: Tuple) -> list:
+        """The message parts of repr(tuple) of numbers and text: (a, b) or (a,)."""
+        parts = [Const("(")]
+        for k, item in enumerate(value.items):
+            if k:
+                parts.append(Const(", "))
+            if isinstance(item, Const):
+                parts.append(Const(repr(item.value)))
+            elif type(item) is Tuple:
+                parts.extend(self.tuple_repr(item))
+            else:
+                parts.append((self.scalar(item), "", "r"))
+        parts.append(Const(",)" if len(value.items) == 1 else ")"))
+        return parts
 
     def message_part(self, part) -> None:
         if isinstance(part, Const):
@@ -502,6 +540,10 @@ class Expressions:
                 yield from self._combinations(rest, condition)
             else:
                 yield condition
+
+
+def _is_tuple(value) -> bool:
+    return type(value) is Tuple or (isinstance(value, Const) and isinstance(value.value, tuple))
 
 
 def c_string(text: str) -> str:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import ast
 import builtins
 import dataclasses
+import functools
 import inspect
 import math
 import sys
@@ -30,12 +31,12 @@ from .values import (
     Func,
     Joined,
     Message,
-    Slot,
-    Text,
-    Vector,
     Obj,
     Scalar,
+    Slot,
+    Text,
     Tuple,
+    Vector,
     describe,
     is_number,
     leaves,
@@ -242,6 +243,9 @@ class TranslatorCore:
                 self.store(target.items[key], value.items[key], f"{what}[{key!r}]")
         elif isinstance(target, Obj) and isinstance(value, Obj) and target.cls is value.cls:
             for key in target.fields:
+                if key not in value.fields and isinstance(
+                        getattr(value.cls, key, None), functools.cached_property):
+                    self.attribute(value, key)  # computed where the example had it cached
                 if key not in value.fields:
                     raise self.error(f"{what}.{key} is missing")
                 if isinstance(target.fields[key], Slot):
@@ -346,6 +350,9 @@ class TranslatorCore:
             return func_of(attr.__func__)
         if isinstance(attr, property):
             return self.inline(func_of(attr.fget, receiver), [], {})
+        if isinstance(attr, functools.cached_property) and isinstance(receiver, Obj):
+            receiver.fields[name] = self.inline(func_of(attr.func, receiver), [], {})
+            return receiver.fields[name]
         if isinstance(attr, types.FunctionType):
             return func_of(attr, receiver) if receiver is not None else Const(attr)
         return from_python(attr)
@@ -367,6 +374,8 @@ class TranslatorCore:
         handler = self.intrinsics.get(_key(target))
         if handler is not None:
             return handler(self, args, kwargs)
+        if isinstance(target, functools._lru_cache_wrapper):  # the cache is Python's business
+            return self.call(Const(target.__wrapped__), args, kwargs)
         if isinstance(target, types.FunctionType):
             return self.inline(func_of(target), args, kwargs)
         if isinstance(target, type):
