@@ -32,6 +32,7 @@ NATIVE = {
     "ContactEHL": {"y": (-2e-6, 2e-6), "y_dot": (-1e-3, 1e-3), "u": (-0.2, 0.2)},
     **{name: {"F_upper": (0.0, 900.0), "F_lower": (0.0, 900.0), "u": (-0.2, 0.2), "x": (-0.3, 1.3)}
        for name in ("FrictionPositionDependent", "FrictionBallToBall", "FrictionPreloadLoss")},
+    "MillingForce": {"u_feed": (-0.05, 0.05)},
 }
 STEP = 1e-4  # s
 
@@ -536,3 +537,14 @@ def test_a_long_table_baked_into_the_model_description_is_where_the_native_fmu_s
         rows[edition] = run_script(fmu, {}, script, STEP)
     for a, b in zip(rows["python"], rows["native"], strict=True):
         assert b == pytest.approx(a, rel=1e-13, abs=1e-300)
+
+
+@pytest.mark.parametrize("teeth", [1, 3, 8, 13])
+def test_an_end_mill_of_any_tooth_count_runs_natively_as_in_python(teeth, native_dir, fmu_dir):
+    parameters = {"teeth": teeth, "entry_angle": 0.3, "exit_angle": 2.9}
+    script = _script("MillingForce", 80, seed=teeth)
+    python = run_script(fmu_dir / "MillingForce.fmu", parameters, script, 3e-5)
+    native = run_script(native_dir / "MillingForce.fmu", parameters, script, 3e-5)
+    assert len({r["F_x"] for r in native}) > 20
+    for a, b in zip(python, native, strict=True):
+        assert b == pytest.approx(a, rel=1e-12, abs=1e-9)

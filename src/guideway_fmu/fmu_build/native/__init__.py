@@ -14,7 +14,8 @@ written once for every native FMU; :mod:`.component` writes a component's unit a
 #: the components whose native edition is built and tested against the Python edition
 COMPONENTS = ("HorizontalRig", "FrictionCoulomb", "FrictionStribeck", "FrictionDahl",
               "ContactDryHertz", "VerticalDynamics", "FeedKinematics", "ContactEHL",
-              "FrictionPositionDependent", "FrictionBallToBall", "FrictionPreloadLoss")
+              "FrictionPositionDependent", "FrictionBallToBall", "FrictionPreloadLoss",
+              "MillingForce")
 
 #: components that stay Python-only by design, and why (the others are not translated yet:
 #: docs/native.md quotes the translator's refusal for each)

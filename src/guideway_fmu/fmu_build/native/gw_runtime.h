@@ -137,9 +137,10 @@ static void gw_msg_format(gw_ctx *ctx, const char *format, double x) {
     gw_msg_text(ctx, text);
 }
 
-static double gw_mod(double a, double b) { /* Python's a % b: the sign of b */
-    double r = fmod(a, b);
-    if (r != 0.0 && ((r < 0.0) != (b < 0.0))) r += b;
+static double gw_mod(double a, double b) { /* Python's a % b and np.mod: the sign of b */
+    double r = fmod(a, b);  /* b = 0: NaN, numpy's answer (Python raises) */
+    if (r != 0.0) { if ((r < 0.0) != (b < 0.0)) r += b; }
+    else if (b == b && b != 0.0) r = copysign(0.0, b);
     return r;
 }
 static long gw_lmod(long a, long b) { long r = a % b; return (r != 0 && ((r < 0) != (b < 0))) ? r + b : r; }
@@ -154,6 +155,34 @@ static long gw_pyminl(long a, long b) { return b < a ? b : a; }
 static double gw_degrees(double x) { return x * (180.0 / 3.14159265358979323846); }
 static double gw_radians(double x) { return x * (3.14159265358979323846 / 180.0); }
 static long gw_to_long(double x) { return isfinite(x) ? (long)x : 0; }
+
+/* numpy's pairwise summation of n doubles (np.sum of a 1-D float array): below 8 a plain
+ * loop, up to 128 eight partial sums, above that the halves summed apart. */
+static double gw_pairwise(const double *a, long n) {
+    if (n < 8) {
+        double r = -0.0;
+        long i;
+        for (i = 0; i < n; ++i) r += a[i];
+        return r;
+    }
+    if (n <= 128) {
+        double r[8], res;
+        long i, j;
+        for (j = 0; j < 8; ++j) r[j] = a[j];
+        for (i = 8; i < n - (n % 8); i += 8)
+            for (j = 0; j < 8; ++j) r[j] += a[i + j];
+        res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+        for (; i < n; ++i) res += a[i];
+        return res;
+    }
+    {
+        long half = n / 2;
+        half -= half % 8;
+        return gw_pairwise(a, half) + gw_pairwise(a + half, n - half);
+    }
+}
+
+static double gw_np_sum(const double *a, long n) { return 0.0 + gw_pairwise(a, n); }
 
 /* numpy.interp(x, xp, fp) of increasing nodes xp[0..n-1] (n >= 1): the end values held outside,
  * NaN at a NaN x, the same arithmetic as numpy's (slope from the left node, then the right one

@@ -46,7 +46,8 @@ _UNARY = {
 # Python function -> C function of two doubles
 _BINARY = {math.atan2: "atan2", math.hypot: "hypot", math.pow: "pow", math.copysign: "copysign",
            np.arctan2: "atan2", np.hypot: "hypot", np.power: "pow",
-           np.maximum: "gw_npmax", np.minimum: "gw_npmin", np.fmax: "fmax", np.fmin: "fmin"}
+           np.maximum: "gw_npmax", np.minimum: "gw_npmin", np.fmax: "fmax", np.fmin: "fmin",
+           np.mod: "gw_mod"}
 # Python predicate -> C predicate of one double
 _TESTS = {math.isfinite: "isfinite", math.isnan: "isnan", math.isinf: "isinf",
           np.isfinite: "isfinite", np.isnan: "isnan", np.isinf: "isinf"}
@@ -115,6 +116,39 @@ def _extreme(c_double, c_long):
                             f"{c_long if both_long else c_double}({result.code}, {item.code})")
         return result
     return make
+
+
+def _np_sum(tr, args, kwargs):
+    """np.sum of a 1-D array (numpy's pairwise summation, gw_np_sum), of a tuple as an array."""
+    value = args[0]
+    if kwargs.get("axis", Const(None)).value not in (None, 0) or len(args) > 1:
+        raise tr.error("np.sum is translated over the one axis of a 1-D array only")
+    if isinstance(value, Tuple):
+        if _known(np.sum, [Const(0)], {}) and all(isinstance(i, Const) for i in value.items):
+            return from_python(np.sum([i.value for i in value.items]))
+        value = tr.fixed_to_vector(_asarray(tr, [value], {}))
+    if isinstance(value, Array):
+        value = tr.fixed_to_vector(value)
+    if not isinstance(value, Vector):
+        return _asarray(tr, [value], {})  # np.sum of a number: itself
+    return Scalar("double", f"gw_np_sum({value.data}, {value.length.code})")
+
+
+def _sum_method(tr, array, args, kwargs):
+    return _np_sum(tr, [array, *args], kwargs)
+
+
+def _reshape_method(tr, array, args, kwargs):
+    """reshape of a 1-D array to (-1,) or (n,): itself."""
+    shape = args[0] if len(args) == 1 else Tuple(list(args))
+    shape = from_python(shape.value) if isinstance(shape, Const) else shape
+    if kwargs or type(shape) is not Tuple or len(shape.items) != 1:
+        raise tr.error("reshape is translated to one dimension only")
+    return array
+
+
+#: the methods of numpy arrays the translator knows, by name
+ARRAY_METHODS = {"sum": _sum_method, "reshape": _reshape_method}
 
 
 def _sum(tr, args, kwargs):
@@ -258,7 +292,7 @@ def _like(fill):
 def _divide(tr, args, kwargs):
     """np.divide: IEEE division (no exception at zero); with ``where``, ``out`` elsewhere."""
     a, b = args
-    if any(isinstance(v, Array) for v in (a, b, kwargs.get("where"), kwargs.get("out"))):
+    if any(isinstance(v, (Array, Vector)) for v in (a, b, kwargs.get("where"), kwargs.get("out"))):
         keys = [k for k in ("where", "out") if k in kwargs]
         return tr.elementwise(lambda x, y, *rest: _divide(tr, [x, y], dict(zip(keys, rest))),
                               a, b, *(kwargs[k] for k in keys))
@@ -356,6 +390,18 @@ def _diff(tr, args, kwargs):
     return Array([tr.binary(ast.Sub(), b, a) for a, b in zip(value.items, value.items[1:])])
 
 
+def _arange(tr, args, kwargs):
+    """np.arange(n) of a count known at run time only: a run-time array 0, 1, ... n - 1."""
+    if len(args) != 1 or kwargs or not isinstance(args[0], Scalar) or args[0].ctype != "long":
+        if _known(np.arange, args, kwargs):
+            return _fold(np.arange, args, kwargs)
+        raise tr.error("np.arange is translated for one whole-number count only")
+    out = tr.new_vector("double", f"({args[0].code} > 0 ? {args[0].code} : 0)")
+    with tr.counting(out.length) as k:
+        tr.emit(f"{out.data}[{k}] = (double){k};")
+    return out
+
+
 def _ravel(tr, args, kwargs):
     value = args[0]
     if isinstance(value, (Array, Masked)):
@@ -365,10 +411,21 @@ def _ravel(tr, args, kwargs):
     return Array([value])
 
 
+def _map(tr, args, kwargs):
+    """map(f, *sequences) of sequences known when the C is written: a tuple of the calls."""
+    function, sequences = args[0], [tr.iterate(a) for a in args[1:]]
+    return Tuple([tr.call(function, list(items), {}) for items in zip(*sequences)])
+
+
 def _dict(tr, args, kwargs):
-    if args:
-        raise tr.error("dict() is translated with keywords only")
-    return Dict(dict(kwargs))
+    """dict(**keywords), or of (key, value) pairs whose keys are known when the C is written."""
+    items = {}
+    for pair in (tr.iterate(args[0]) if args else []):
+        key, value = tr.iterate(pair)
+        if not isinstance(key, Const):
+            raise tr.error("a dict key must be known when the C is written")
+        items[key.value] = value
+    return Dict({**items, **kwargs})
 
 
 def _clip(tr, args, kwargs):
@@ -389,7 +446,7 @@ def _bool(tr, args, kwargs):
 
 
 def _where(tr, args, kwargs):
-    if any(isinstance(a, Array) for a in args):
+    if any(isinstance(a, (Array, Vector)) for a in args):
         return tr.elementwise(lambda *row: _where(tr, list(row), kwargs), *args)
     condition = tr.truth(args[0])
     a, b = tr.scalar(args[1]), tr.scalar(args[2])
@@ -421,15 +478,15 @@ def table() -> dict:
         builtins.int: _numeric(int, _int), builtins.abs: _numeric(abs, _abs),
         builtins.max: _numeric(max, _extreme("gw_pymax", "gw_pymaxl")),
         builtins.min: _numeric(min, _extreme("gw_pymin", "gw_pyminl")),
-        builtins.sum: _sum, np.sum: _sum,
+        builtins.sum: _sum, np.sum: _np_sum,
         np.asarray: _asarray, np.array: _asarray,
         np.all: _reduce_all(True), builtins.all: _reduce_all(True),
         np.any: _reduce_all(False), builtins.any: _reduce_all(False),
         builtins.isinstance: _isinstance, builtins.type: _type, builtins.getattr: _getattr,
         builtins.len: _len, builtins.zip: _zip, builtins.enumerate: _enumerate,
-        builtins.range: _range, builtins.bool: _bool, builtins.dict: _dict, np.where: _where,
+        builtins.range: _range, builtins.bool: _bool, builtins.dict: _dict, builtins.map: _map, np.where: _where,
         np.broadcast_to: _broadcast_to, np.broadcast_arrays: _broadcast_arrays, np.stack: _stack,
-        np.zeros_like: _like(0.0), np.ones_like: _like(1.0), np.ravel: _ravel,
+        np.zeros_like: _like(0.0), np.ones_like: _like(1.0), np.ravel: _ravel, np.arange: _arange,
         np.divide: _divide,
         np.clip: _numeric(np.clip, _clip), object.__setattr__: _setattr,
     })

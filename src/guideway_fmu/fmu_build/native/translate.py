@@ -328,6 +328,9 @@ class TranslatorCore:
         if isinstance(value, Text) and name == "split":
             from .intrinsics import split
             return Const(_Bound(split, value))
+        if isinstance(value, (Vector, Array)) and name in ("sum", "reshape"):
+            from .intrinsics import ARRAY_METHODS
+            return Const(_Bound(ARRAY_METHODS[name], value))
         if isinstance(value, Vector) and name in ("shape", "ndim", "size"):
             return {"shape": Tuple([value.length]), "ndim": Const(1), "size": value.length}[name]
         if isinstance(value, (Array, Scalar)) and name in ("shape", "ndim", "size"):
