@@ -24,4 +24,10 @@ PYTHON_ONLY = {
                         "functions, which C's library lacks: a C edition would need them written "
                         "a second time",
     "ForceTable": "it reads a CSV file named by a parameter when the model is built",
+    "Wear": "it integrates the wear along the running distance with SciPy's adaptive solve_ivp "
+            "and needs SciPy's complete elliptic integrals for its ball contacts: a C edition "
+            "would need both written a second time",
+    "BallToBallFriction": "its ball loads are solved with SciPy's root (MINPACK's hybrid "
+                          "method) and its friction maps need SciPy's complete elliptic "
+                          "integrals: a C edition would need both written a second time",
 }
