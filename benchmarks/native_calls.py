@@ -37,17 +37,19 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 
 from guideway_fmu.components import registry
-from guideway_fmu.fmu_build import cache, native
+from guideway_fmu.fmu_build import build, cache, native
 from guideway_fmu.fmu_build.native.build import build_native
 from guideway_fmu.fmu_build.native.component import Unit
 from guideway_fmu.fmu_build.native.source import TranslationError
 
-EDITIONS = ("python", "native")
+EDITIONS = build.EDITIONS
 PACKAGE_ROOT = Path(native.__file__).resolve().parents[3]  # the folder holding guideway_fmu/
 STEP = 1e-5  # s
 LOADED = {"F_upper": 500.0, "F_lower": 500.0, "u": 0.1}  # N, N, m/s: a preloaded carriage moving
-INPUTS = {"FrictionCoulomb": LOADED, "FrictionStribeck": LOADED, "ContactDryHertz": {"u": 0.1},
-          "FrictionDahl": LOADED}
+INPUTS = {**{name: LOADED for name in ("FrictionCoulomb", "FrictionStribeck", "FrictionDahl",
+                                        "FrictionPositionDependent", "FrictionBallToBall",
+                                        "FrictionPreloadLoss")},
+          "ContactDryHertz": {"u": 0.1}, "ContactEHL": {"u": 0.1}, "MillingForce": {"u_feed": 0.02}}
 
 
 @dataclass

@@ -115,11 +115,16 @@ def _build_arguments(p) -> None:
     p.add_argument("--out", type=Path, default=Path("fmus"), help="output folder (default fmus/)")
     p.add_argument("names", nargs="*", help="FMUs to build (default: all)")
     _edition_option(p, "how the FMUs run, under the same file names")
+    p.add_argument("--cross", action="store_true",
+                   help="native FMUs carry win64 and darwin64 binaries too, cross-compiled with "
+                        "zig (pip install 'guideway-fmu[cross]')")
 
 
 def _build(args) -> int:
     from .fmu_build.build import build
-    for path in build(args.out, args.names or None, args.edition):
+    if args.cross and args.edition != "native":
+        raise ValueError("--cross cross-compiles native FMUs: give --edition native with it")
+    for path in build(args.out, args.names or None, args.edition, args.cross):
         print(path)
     return 0
 

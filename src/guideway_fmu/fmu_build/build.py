@@ -117,25 +117,29 @@ def fmu_hash(cls: type, edition: str = "python") -> str:
 
 
 def build(out_dir: str | Path = "fmus", names: list[str] | None = None,
-          edition: str = "python") -> list[Path]:
+          edition: str = "python", cross: bool = False) -> list[Path]:
     """Build the named FMUs (default: all, the extensions included) in ``edition`` into
-    ``out_dir`` and write its README.md (every FMU in the folder)."""
+    ``out_dir`` and write its README.md (every FMU in the folder); ``cross``: native FMUs carry
+    win64 and darwin64 binaries too (fmu_build/native/build.py)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     classes = [registry.component(n) for n in (registry.names() if names is None else names)]
-    built = pack_edition([(cls, out_dir / f"{cls.__name__}.fmu") for cls in classes], edition)
+    built = pack_edition([(cls, out_dir / f"{cls.__name__}.fmu") for cls in classes], edition,
+                         cross)
     write_readme(out_dir, sorted(out_dir.glob("*.fmu")))
     return built
 
 
-def pack_edition(slaves: list[tuple[type, Path]], edition: str) -> list[Path]:
+def pack_edition(slaves: list[tuple[type, Path]], edition: str, cross: bool = False) -> list[Path]:
     """Build an FMU of each (component class, destination file) in ``edition``
-    (:func:`edition_of` decides per class), in the order given."""
+    (:func:`edition_of` decides per class), in the order given; ``cross`` as for :func:`build`."""
     native = {cls for cls, _ in slaves if edition_of(cls.__name__, edition) == "native"}
     python = iter(pack([(cls, dest) for cls, dest in slaves if cls not in native]))
     if native:
-        from .native.build import build_native
-    return [build_native(cls, dest) if cls in native else next(python) for cls, dest in slaves]
+        from .native.build import CROSS, PLATFORM, build_native
+        platforms = tuple(dict.fromkeys([PLATFORM, *CROSS])) if cross else (PLATFORM,)
+    return [build_native(cls, dest, platforms) if cls in native else next(python)
+            for cls, dest in slaves]
 
 
 def pack(slaves: list[tuple[type, Path]], data: dict[str, Path] | None = None,

@@ -1,14 +1,23 @@
 /* A minimal FMI 2.0 co-simulation host, as a commercial C tool drives an FMU: dlopen, instantiate,
  * initialise, a fixed number of steps, read outputs, terminate, free, dlclose, exit.
  * Used by `guideway-fmu host-env --check` and the C-host tests; built on demand with the
- * system's C compiler against fmpy's copy of the FMI 2.0 headers.
+ * system's C compiler against fmpy's copy of the FMI 2.0 headers (on Windows with
+ * LoadLibrary: the tests cross-compile it and run it under wine).
  *
  * usage: c_host BINARY RESOURCE_URI GUID STEP_SIZE STEPS [ARGUMENT ...]
  * an ARGUMENT r:VR=VALUE sets a Real and s:VR=TEXT a String before initialisation; a plain VR is a
  * Real output, printed in one line "t v1 v2 ..." after the last step (%.17g). Exit status 0 when
  * every call returned fmi2OK, 2 when instantiation failed, 3 when a later call failed, 1 on bad
  * usage. The FMU logs to stderr, unless the environment sets C_HOST_LOGGING=0. */
+#ifdef _WIN32
+#include <windows.h>
+#define dlopen(path, mode) ((void *)LoadLibraryA(path))
+#define dlsym(library, name) ((void *)GetProcAddress((HMODULE)(library), name))
+#define dlclose(library) FreeLibrary((HMODULE)(library))
+#define dlerror() "LoadLibrary failed"
+#else
 #include <dlfcn.h>
+#endif
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -51,15 +51,22 @@ def exports(environment: dict[str, str]) -> str:
     return "".join(f"export {k}={shlex.quote(v)}\n" for k, v in environment.items())
 
 
-def compile_c_host(out_dir: Path) -> Path:
-    """Compile ``c_host.c`` into ``out_dir``; returns the executable."""
-    compiler = shutil.which("cc") or shutil.which("gcc")
-    if compiler is None:
-        raise HostEnvError("no C compiler (cc or gcc) on PATH to build the C host of the check")
-    executable = Path(out_dir) / "c_host"
+def compile_c_host(out_dir: Path, platform: str | None = None) -> Path:
+    """Compile ``c_host.c`` into ``out_dir`` for this platform, or cross-compile it for
+    ``platform`` (fmu_build.native.build.compiler); returns the executable."""
     headers = Path(fmpy.__file__).parent / "c-code"
-    result = subprocess.run([compiler, "-O1", "-o", str(executable), str(C_HOST_SOURCE),
-                             f"-I{headers}", "-ldl"], capture_output=True, text=True)
+    if platform is None:
+        compiler = shutil.which("cc") or shutil.which("gcc")
+        if compiler is None:
+            raise HostEnvError("no C compiler (cc or gcc) on PATH to build the C host of the check")
+        command, executable = [compiler], Path(out_dir) / "c_host"
+    else:
+        from .native.build import compiler as cross
+        command, executable = cross(platform), Path(out_dir) / f"c_host_{platform}"
+        executable = executable.with_suffix(".exe") if platform == "win64" else executable
+    result = subprocess.run([*command, "-O1", "-o", str(executable), str(C_HOST_SOURCE),
+                             f"-I{headers}", *([] if platform == "win64" else ["-ldl"])],
+                            capture_output=True, text=True)
     if result.returncode != 0:
         raise HostEnvError(f"compiling {C_HOST_SOURCE.name} failed:\n{result.stderr}")
     return executable
@@ -77,10 +84,12 @@ class HostRun:
 
 def run_in_c_host(executable: Path, fmu: str | Path, environment: dict[str, str], *,
                   work_dir: Path, steps: int = 10, step_size: float | None = None,
-                  start_values: dict[str, float | str] | None = None) -> HostRun:
+                  start_values: dict[str, float | str] | None = None,
+                  platform: str = "linux64", launcher: tuple[str, ...] = ()) -> HostRun:
     """Run ``fmu`` for ``steps`` steps (default step: its DefaultExperiment's) in the C host
     ``executable``, in a child whose environment is ``environment`` and PATH only, with the Real
-    or String variables of ``start_values`` (by name) set before initialisation."""
+    or String variables of ``start_values`` (by name) set before initialisation; the binary of
+    ``platform``, the host started by ``launcher`` where it needs one (wine)."""
     fmu = Path(fmu)
     try:
         md = read_model_description(str(fmu))
@@ -98,8 +107,9 @@ def run_in_c_host(executable: Path, fmu: str | Path, environment: dict[str, str]
         archive.extractall(unpacked)
     outputs = [v for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
     h = step_size or (md.defaultExperiment.stepSize if md.defaultExperiment else 1e-4)
-    binary = unpacked / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"
-    command = [str(executable), str(binary), (unpacked / "resources").as_uri(), md.guid,
+    suffix = {"win64": ".dll", "darwin64": ".dylib"}.get(platform, ".so")
+    binary = unpacked / "binaries" / platform / f"{md.coSimulation.modelIdentifier}{suffix}"
+    command = [*launcher, str(executable), str(binary), (unpacked / "resources").as_uri(), md.guid,
                repr(float(h)), str(steps), *settings, *[str(v.valueReference) for v in outputs]]
     result = subprocess.run(command, capture_output=True, text=True,
                             env={"PATH": os.environ.get("PATH", ""), **environment})

@@ -4,7 +4,10 @@ repeats steps exactly. The Python edition is the reference: its physics is teste
 hand calculations and published numbers elsewhere; here every number must come out the same."""
 from __future__ import annotations
 
+import importlib.util
 import math
+import zipfile
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -268,6 +271,8 @@ def test_build_edition_native_writes_native_fmus_under_the_same_names_and_python
     with pytest.raises(SystemExit):
         cli.main(["build", "--edition", "wasm", "--out", str(tmp_path)])
     assert "invalid choice: 'wasm'" in capsys.readouterr().err
+    assert cli.main(["build", "--cross", "--out", str(tmp_path), "FrictionCoulomb"]) == 2
+    assert "--cross cross-compiles native FMUs: give --edition native" in capsys.readouterr().err
 
 
 def test_ensure_rebuilds_a_native_fmu_of_other_code_in_the_native_edition(native_dir, tmp_path):
@@ -548,3 +553,39 @@ def test_an_end_mill_of_any_tooth_count_runs_natively_as_in_python(teeth, native
     assert len({r["F_x"] for r in native}) > 20
     for a, b in zip(python, native, strict=True):
         assert b == pytest.approx(a, rel=1e-12, abs=1e-9)
+
+
+WINE = Path("/usr/lib/wine/wine64")
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(importlib.util.find_spec("ziglang") is None,
+                    reason="cross-compiling needs the ziglang package (the [cross] extra)")
+def test_cross_compiled_binaries_a_win64_host_runs_under_wine_as_linux_runs_them(tmp_path):
+    """Every native FMU with win64 and darwin64 binaries beside linux64; the win64 one, in a C
+    host compiled for Windows, under wine (where Debian's wine64 is installed), gives the linux
+    binary's outputs; the darwin64 one is a 64-bit Mach-O library (no macOS here to run it)."""
+    from guideway_fmu.fmu_build import host_env
+    from guideway_fmu.fmu_build.native import COMPONENTS
+
+    fmus = [build_native(registry.component(name), tmp_path / f"{name}.fmu",
+                         ("linux64", "win64", "darwin64")) for name in COMPONENTS]
+    linux_host = host_env.compile_c_host(tmp_path)
+    windows_host = host_env.compile_c_host(tmp_path, "win64") if WINE.exists() else None
+    environment = {"WINEPREFIX": str(tmp_path / "wine"), "WINEDEBUG": "-all",
+                   "HOME": str(tmp_path)}
+    for fmu in fmus:
+        with zipfile.ZipFile(fmu) as archive:
+            mach_o = archive.read(f"binaries/darwin64/{fmu.stem}.dylib")[:4]
+            assert mach_o == b"\xcf\xfa\xed\xfe", fmu.name  # MH_MAGIC_64, little-endian
+            assert archive.read(f"binaries/win64/{fmu.stem}.dll")[:2] == b"MZ"
+        linux = host_env.run_in_c_host(linux_host, fmu, {}, work_dir=tmp_path)
+        assert linux.status == 0, linux.stderr[-2000:]
+        if windows_host is None:
+            continue
+        windows = host_env.run_in_c_host(windows_host, fmu, environment, work_dir=tmp_path,
+                                         platform="win64", launcher=(str(WINE),))
+        assert windows.status == 0, windows.stderr[-2000:]
+        assert windows.outputs == pytest.approx(linux.outputs, rel=1e-13, abs=1e-300), fmu.name
+    if windows_host is None:
+        pytest.skip("wine64 is not installed: the win64 binaries were built, not run")
