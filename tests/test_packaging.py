@@ -46,7 +46,8 @@ def test_a_wheel_installs_a_command_that_runs_its_examples_from_anywhere(tmp_pat
             "guideway_fmu/examples/ball_guides/wu2012_table2_moment_0.toml",
             "guideway_fmu/scenarios/soleimanian2020_unloaded.toml",
             "guideway_fmu/scenarios/sweeps/soleimanian2020_envelope_vs_frequency.toml",
-            "guideway_fmu/fmu_build/c_host.c"} <= inside
+            "guideway_fmu/fmu_build/c_host.c", "guideway_fmu/fmu_build/native/fmi2_slave.c",
+            "guideway_fmu/fmu_build/native/gw_runtime.h"} <= inside
     assert not any(n.startswith(("tests/", "benchmarks/", "orchestration/")) for n in inside)
 
     fresh = tmp_path / "venv"
@@ -77,3 +78,8 @@ def test_a_wheel_installs_a_command_that_runs_its_examples_from_anywhere(tmp_pat
     _run(command, "run", "soleimanian2020_unloaded", "--stop", "0.0004", "--out", "run",
          "--no-progress", cwd=elsewhere, env=env)
     assert (elsewhere / "run" / "results.csv").is_file()
+    for edition in ("python", "native"):  # the native edition compiled from the installed C
+        _run(command, "run", "soleimanian2020_9000N_4500Hz", "--stop", "0.0004", "--out", edition,
+             "--edition", edition, "--no-progress", cwd=elsewhere, env=env)
+    assert (elsewhere / "native" / "results.csv").read_text() == \
+        (elsewhere / "python" / "results.csv").read_text()

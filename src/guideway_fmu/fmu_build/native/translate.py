@@ -15,6 +15,7 @@ import builtins
 import dataclasses
 import functools
 import inspect
+import os
 import math
 import sys
 import sysconfig
@@ -129,16 +130,22 @@ def _is_object(value) -> bool:
         not isinstance(value, (type, types.FunctionType, BaseException))
 
 
-_LIBRARIES = tuple({sysconfig.get_path(k) for k in ("stdlib", "platstdlib", "purelib", "platlib")})
+def _libraries() -> tuple[str, ...]:
+    """Where installed libraries live: the interpreter's library folders and every
+    site-packages (or dist-packages) folder on sys.path (a .pth file or a user site adds some)."""
+    paths = {sysconfig.get_path(k) for k in ("stdlib", "platstdlib", "purelib", "platlib")}
+    paths |= {p for p in sys.path if os.path.basename(os.path.normpath(p)) in (
+        "site-packages", "dist-packages")}
+    return tuple(os.path.join(p, "") for p in paths if p)
 
 
 def translatable(cls: type) -> bool:
     """Whether objects of ``cls`` are translated: classes of this package or of other source
-    outside the Python installation (a user's model), not those of libraries."""
+    outside the installed libraries (a user's model), not those of libraries."""
     module = sys.modules.get(cls.__module__)
     path = getattr(module, "__file__", None)
     return cls.__module__.split(".")[0] == PACKAGE or (
-        path is not None and not path.startswith(_LIBRARIES))
+        path is not None and not path.startswith(_libraries()))
 
 
 def func_of(function, receiver=None, cell_value=None) -> Func:
