@@ -45,8 +45,11 @@ from .runtime import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fm
 from .units import BASE_UNITS
 
 
-#: the refusal of a String parameter's value outside its choices (the native edition says it too)
+#: the refusals the FMI layer words (fmu_build/native writes the native edition's from these):
+#: a String parameter's value outside its choices, a step size, outputs that are not finite
 CHOICE = "parameter {name} must be one of {choices}, got {value!r}"
+STEP_SIZE = "communication step size must be > 0, got {step_size!r}"
+NOT_FINITE = "outputs {outputs!r} are not finite at the present inputs"
 
 
 class GuidewaySlave(Fmi2Slave):
@@ -246,7 +249,7 @@ class GuidewaySlave(Fmi2Slave):
         self._outputs = None
         try:
             if not (math.isfinite(step_size) and step_size > 0.0):
-                raise ValueError(f"communication step size must be > 0, got {step_size}")
+                raise ValueError(STEP_SIZE.format(step_size=step_size))
             self._checked(lambda: self.advance(current_time, step_size))
         except Exception as exc:  # noqa: BLE001 - a failed step is discarded, not an error
             self._report(exc)
@@ -302,7 +305,7 @@ class GuidewaySlave(Fmi2Slave):
         if math.isfinite(sum(values.values())) or all(math.isfinite(v) for v in values.values()):
             return values
         bad = {k: v for k, v in values.items() if not math.isfinite(v)}
-        raise ValueError(f"outputs {bad} are not finite at the present inputs")
+        raise ValueError(NOT_FINITE.format(outputs=bad))
 
     # -- FMU state ----------------------------------------------------------------------
     def _get_fmu_state(self):

@@ -589,3 +589,18 @@ def test_cross_compiled_binaries_a_win64_host_runs_under_wine_as_linux_runs_them
         assert windows.outputs == pytest.approx(linux.outputs, rel=1e-13, abs=1e-300), fmu.name
     if windows_host is None:
         pytest.skip("wine64 is not installed: the win64 binaries were built, not run")
+
+
+@pytest.mark.parametrize("h", [0.0, -1e-5, math.nan])
+def test_a_bad_step_size_is_refused_in_the_python_editions_sentence(h, native_dir, fmu_dir, capfd):
+    said = []
+    for folder in (native_dir, fmu_dir):
+        fmu = Driven(folder / "HorizontalRig.fmu")
+        try:
+            fmu.start({}, {})
+            assert fmu.step(0.0, h) == fmi2Discard
+        finally:
+            fmu.close()
+        said.append(next(line for line in capfd.readouterr().err.splitlines()
+                         if "communication step size" in line))
+    assert said[0] == said[1] and said[0].endswith(f"must be > 0, got {h!r}")

@@ -26,7 +26,7 @@ import uuid
 
 import numpy as np
 
-from ...components.base import CHOICE, GuidewaySlave
+from ...components.base import CHOICE, NOT_FINITE, STEP_SIZE, GuidewaySlave
 from ...components.runtime import Fmi2Causality, Fmi2Slave
 from .expressions import Expressions, c_string
 from .intrinsics import table
@@ -318,6 +318,8 @@ class Unit:
             f'#define GW_GUID "{{{self.guid}}}"',
             f"#define GW_N_OUTPUTS {len(self.outputs)}",
             f"#define GW_N_VARIABLES {len(self.variables)}",
+            *_message_parts("GW_MSG_STEP_SIZE", STEP_SIZE, "step_size"),
+            *_message_parts("GW_MSG_NOT_FINITE", NOT_FINITE, "outputs"),
             *selector,
             "typedef struct {\n" + "\n".join(struct) + "\n} gw_self;",
             f"static const char *const gw_output_names[] = {{{names}}};",
@@ -327,6 +329,13 @@ class Unit:
             '#include "fmi2_slave.c"',
             "static const gw_variable gw_variables[] = {\n" + "\n".join(rows) + "\n};",
         ])
+
+
+def _message_parts(macro: str, sentence: str, field: str) -> list[str]:
+    """C macros ``macro``_HEAD and _TAIL: base.py's ``sentence`` before and after its one
+    ``{field!r}``, which the C writes between them."""
+    head, tail = sentence.split("{" + field + "!r}")
+    return [f"#define {macro}_HEAD {c_string(head)}", f"#define {macro}_TAIL {c_string(tail)}"]
 
 
 def _owned_by(value, owner: Obj):

@@ -115,8 +115,9 @@ static int gw_outputs(gw_instance *c) {
     for (i = 0; i < GW_N_OUTPUTS; ++i)
         if (!isfinite(s->outputs[i])) break;
     if (i == GW_N_OUTPUTS) return 0;
-    gw_msg_clear(&c->ctx);  /* as base.py words it: outputs {'name': value, ...} are not finite */
-    gw_msg_text(&c->ctx, "outputs {");
+    gw_msg_clear(&c->ctx);  /* base.NOT_FINITE: its dict of the outputs between head and tail */
+    gw_msg_text(&c->ctx, GW_MSG_NOT_FINITE_HEAD);
+    gw_msg_text(&c->ctx, "{");
     for (i = 0, k = 0; i < GW_N_OUTPUTS; ++i) {
         if (isfinite(s->outputs[i])) continue;
         if (k++) gw_msg_text(&c->ctx, ", ");
@@ -125,7 +126,8 @@ static int gw_outputs(gw_instance *c) {
         gw_msg_text(&c->ctx, "': ");
         gw_msg_repr(&c->ctx, s->outputs[i]);
     }
-    gw_msg_text(&c->ctx, "} are not finite at the present inputs");
+    gw_msg_text(&c->ctx, "}");
+    gw_msg_text(&c->ctx, GW_MSG_NOT_FINITE_TAIL);
     return 1;
 }
 
@@ -474,8 +476,9 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h, fmi2Boole
     s->terminated = false;
     if (!(isfinite(h) && h > 0.0)) {
         gw_msg_clear(&c->ctx);
-        gw_msg_text(&c->ctx, "communication step size must be > 0, got ");
+        gw_msg_text(&c->ctx, GW_MSG_STEP_SIZE_HEAD);  /* base.STEP_SIZE */
         gw_msg_repr(&c->ctx, h);
+        gw_msg_text(&c->ctx, GW_MSG_STEP_SIZE_TAIL);
         s->terminated = true;
     } else if (gw_ready(c)) {
         s->terminated = true;  /* a bad parameter or input: no shorter step cures it */
