@@ -170,6 +170,35 @@ def test_a_message_lists_the_items_a_run_time_mask_selects_as_python_does(x, y):
     assert str(native.value) == str(python.value)
 
 
+def math_errors(x, kind):
+    if kind == 0.0:
+        return math.sqrt(x)
+    if kind == 1.0:
+        return math.log(x)
+    if kind == 2.0:
+        return math.exp(x)
+    if kind == 3.0:
+        return float(int(x))
+    return float(math.floor(x)) + np.sqrt(x)
+
+
+@pytest.mark.filterwarnings("ignore:invalid value encountered in sqrt")
+@pytest.mark.parametrize("x, kind", [(-1.0, 0.0), (0.0, 1.0), (-2.0, 1.0), (1000.0, 2.0),
+                                     (math.inf, 3.0), (math.nan, 3.0), (math.inf, 4.0),
+                                     (math.nan, 0.0), (math.inf, 2.0), (-4.0, 4.0)])
+def test_math_fails_where_pythons_math_fails_in_its_words_and_numpy_does_not(x, kind):
+    c = compiled(math_errors, 2)
+    try:
+        expected = math_errors(x, kind)
+    except (ValueError, OverflowError) as exc:
+        words = str(exc) if isinstance(exc, ValueError) else f"{type(exc).__name__}: {exc}"
+        with pytest.raises(ValueError) as native:
+            c(x, kind)
+        assert str(native.value) == words
+    else:
+        assert c(x, kind) == pytest.approx(expected, nan_ok=True)
+
+
 def test_an_exception_a_handler_catches_is_replaced_by_its_own_as_in_python():
     c = compiled(caught, 2)
     with pytest.raises(ValueError, match=r"^x must be >= 0, got -2\.0$"):

@@ -154,7 +154,6 @@ static long gw_pymaxl(long a, long b) { return b > a ? b : a; }
 static long gw_pyminl(long a, long b) { return b < a ? b : a; }
 static double gw_degrees(double x) { return x * (180.0 / 3.14159265358979323846); }
 static double gw_radians(double x) { return x * (3.14159265358979323846 / 180.0); }
-static long gw_to_long(double x) { return isfinite(x) ? (long)x : 0; }
 
 /* numpy's pairwise summation of n doubles (np.sum of a 1-D float array): below 8 a plain
  * loop, up to 128 eight partial sums, above that the halves summed apart. */

@@ -77,6 +77,30 @@ def _unary(c_name):
     return lambda tr, args, kwargs: Scalar("double", f"{c_name}((double){args[0].code})")
 
 
+#: math's functions that report a finite argument's infinite result as OverflowError (CPython's
+#: mathmodule.c: the others report it, and a NaN from a number, as ValueError)
+_CAN_OVERFLOW = {math.exp, math.expm1, math.sinh, math.cosh}
+
+
+def _math_unary(function, c_name):
+    """A function of the math module: C's, failing where Python's math fails (a NaN result of a
+    number: ValueError, math domain error; an infinite one of a finite number: OverflowError,
+    math range error, or ValueError for those that cannot overflow)."""
+    def make(tr, args, kwargs):
+        x = tr.variable(tr.scalar(_to_double(tr, args, kwargs)), tr.frame)
+        value = tr.variable(Scalar("double", f"{c_name}({x.code})"), tr.frame)
+        tr.emit(f"if (isnan({value.code}) && !isnan({x.code})) {{")
+        tr.fail([Const("math domain error")], ValueError)
+        tr.emit("}")
+        tr.emit(f"if (isinf({value.code}) && isfinite({x.code})) {{")
+        overflow = function in _CAN_OVERFLOW
+        tr.fail([Const("math range error" if overflow else "math domain error")],
+                OverflowError if overflow else ValueError)
+        tr.emit("}")
+        return value
+    return make
+
+
 def _binary(c_name):
     return lambda tr, args, kwargs: Scalar(
         "double", f"{c_name}((double){args[0].code}, (double){args[1].code})")
@@ -87,7 +111,8 @@ def _test(c_name):
 
 
 def _rounding(c_name):
-    return lambda tr, args, kwargs: Scalar("long", f"gw_to_long({c_name}({args[0].code}))")
+    """math.floor and math.ceil: a whole number, refused as int() refuses."""
+    return lambda tr, args, kwargs: _int(tr, [Scalar("double", f"{c_name}({args[0].code})")], {})
 
 
 def _to_double(tr, args, kwargs):
@@ -95,8 +120,20 @@ def _to_double(tr, args, kwargs):
 
 
 def _int(tr, args, kwargs):
+    """int(x): a whole number; a float's infinity (OverflowError) and NaN (ValueError) refused
+    in Python's words, beyond C's long a RuntimeError."""
     a = args[0]
-    return a if a.ctype == "long" else Scalar("long", f"gw_to_long(trunc({a.code}))")
+    if a.ctype != "double":
+        return a if a.ctype == "long" else Scalar("long", f"((long){a.code})")
+    x = tr.variable(a, tr.frame)
+    tr.emit(f"if (isinf({x.code})) {{")
+    tr.fail([Const("cannot convert float infinity to integer")], OverflowError)
+    tr.emit(f"}} else if (isnan({x.code})) {{")
+    tr.fail([Const("cannot convert float NaN to integer")], ValueError)
+    tr.emit(f"}} else if (fabs({x.code}) >= 9.2e18) {{")
+    tr.fail([Const("an integer beyond the native edition's 64 bits: "), x], RuntimeError)
+    tr.emit("}")
+    return Scalar("long", f"((long)trunc({x.code}))")
 
 
 def _abs(tr, args, kwargs):
@@ -465,7 +502,10 @@ def table() -> dict:
     """The intrinsic handlers by Python function."""
     handlers = {}
     for function, c_name in _UNARY.items():
-        handlers[function] = _numeric(function, _unary(c_name))
+        handlers[function] = _numeric(function, _math_unary(function, c_name)
+                                      if function.__module__ == "math" and function not in (
+                                          math.fabs, math.degrees, math.radians)
+                                      else _unary(c_name))
     for function, c_name in _BINARY.items():
         handlers[function] = _numeric(function, _binary(c_name))
     for function, c_name in _TESTS.items():
