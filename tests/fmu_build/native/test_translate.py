@@ -131,6 +131,12 @@ def masked_message(x, y):
     return float(np.sum(d))
 
 
+def guarded(x, y):
+    """Checks in the arm or operand Python does not evaluate must not fail."""
+    return ((math.log(x) if x > 0.0 else -1.0) + (1.0 if x > 0.0 and math.sqrt(x) > y else 0.0)
+            + (2.0 if x <= 0.0 or math.log(x) > y else 0.0) + (math.sqrt(-x) if x < 0.0 else x))
+
+
 CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
          (branches_merge, [(2.0, 1.0), (-2.0, 1.0), (0.5, 1.0)]),
          (optional_object, [(2e-6, 1e6), (2e-6, 0.0), (-1.0, 3.0)]),
@@ -141,7 +147,8 @@ CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
          (run_time_arrays, [(1.0, 2.0), (2.5, 7.0), (-0.5, 40.0), (1.0, 1.0), (0.7, 256.0)]),
          (shapes_and_tuples, [(1.0, 2.0), (1.5, 2.0)]),
          (cached, [(0.5, 3.0)]),
-         (caught, [(4.0, 1.0)])]
+         (caught, [(4.0, 1.0)]),
+         (guarded, [(-1.0, 0.0), (0.0, 0.5), (4.0, 1.0), (4.0, 3.0)])]
 
 
 @pytest.mark.parametrize("function, inputs", CASES, ids=[c[0].__name__ for c in CASES])

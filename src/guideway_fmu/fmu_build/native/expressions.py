@@ -167,33 +167,55 @@ class Expressions:
             self.out.lines.extend("    " + line for line in lines_second)
             self.emit("}")
             return Choice(flag, first, second)
+        previous = self.out.capture()  # the target's variables; each arm stores into them
         target = self.variable(first if isinstance(first, Scalar) or not _numbers(first, second)
                                else self.scalar(first), self.frame)
-        self.out.lines.extend(lines_first)  # (the first value's copy was emitted before them)
-        self.emit(f"if (!({test.code})) {{")
-        self.out.lines.extend("    " + line for line in lines_second)
-        self.out.depth += 1
-        self.store(target, second, "a conditional expression")
-        self.out.depth -= 1
+        self.out.restore(previous)
+        for keyword, lines, value in (("if", lines_first, first), ("} else", lines_second, second)):
+            self.emit(f"{keyword} ({test.code}) {{" if keyword == "if" else "} else {")
+            self.out.lines.extend("    " + line for line in lines)
+            self.out.depth += 1
+            self.store(target, value, "a conditional expression")
+            self.out.depth -= 1
         self.emit("}")
         return target
 
     def expr_BoolOp(self, node):
         """``and`` / ``or``: a known operand decides or drops out; the rest are a C condition
-        (in a condition, Python's operand value and its truth agree)."""
+        (in a condition, Python's operand value and its truth agree). An operand that needs
+        statements (a check that may fail) runs only where Python evaluates it."""
         is_and = isinstance(node.op, ast.And)
-        terms, value = [], Const(is_and)
+        operands, value = [], Const(is_and)
         for operand in node.values:
+            previous = self.out.capture()
             value = self.expr(operand)
+            lines = self.out.restore(previous)
             truth = self.truth(value)
-            if isinstance(truth, Const):
-                if truth.value != is_and:  # False decides an and, True an or
-                    return value if not terms else Const(not is_and)
-                continue
-            terms.append(truth.code)
-        if not terms:
-            return value
-        return Scalar("bool", "(" + (" && " if is_and else " || ").join(terms) + ")")
+            operands.append((lines, truth))
+            if isinstance(truth, Const) and truth.value != is_and:  # False decides an and
+                break
+        if all(not lines for lines, _ in operands[1:]):
+            self.out.lines.extend(operands[0][0])
+            terms = [t.code for _, t in operands if not isinstance(t, Const)]
+            if isinstance(operands[-1][1], Const) and operands[-1][1].value != is_and:
+                return value if not terms else Const(not is_and)
+            if not terms:
+                return value
+            return Scalar("bool", "(" + (" && " if is_and else " || ").join(terms) + ")")
+        flag = self.out.declare("bool", "and" if is_and else "or")
+        self.emit(f"{flag} = {1 if is_and else 0};")
+        opened = 0
+        for k, (lines, truth) in enumerate(operands):
+            if k:
+                self.emit(f"if ({'' if is_and else '!'}{flag}) {{")
+                self.out.depth += 1
+                opened += 1
+            self.out.lines.extend("    " * self.out.depth + line for line in lines)
+            self.emit(f"{flag} = {truth.code if isinstance(truth, Scalar) else int(truth.value)};")
+        for _ in range(opened):
+            self.out.depth -= 1
+            self.emit("}")
+        return Scalar("bool", flag)
 
     def expr_UnaryOp(self, node):
         value = self.expr(node.operand)
