@@ -604,3 +604,20 @@ def test_a_bad_step_size_is_refused_in_the_python_editions_sentence(h, native_di
         said.append(next(line for line in capfd.readouterr().err.splitlines()
                          if "communication step size" in line))
     assert said[0] == said[1] and said[0].endswith(f"must be > 0, got {h!r}")
+
+
+def test_the_logger_hears_of_failures_only_while_logging_is_on_and_stderr_always(
+        native_dir, capfd):
+    fmu = Driven(native_dir / "FrictionCoulomb.fmu")
+    try:
+        fmu.start({}, {})
+        fmu.slave.setDebugLogging(False, [])
+        fmu.set({"F_upper": -1.0})
+        assert fmu.step(0.0, STEP) == fmi2Discard
+        assert fmu.messages == [] and "F_upper" in capfd.readouterr().err
+        fmu.slave.setDebugLogging(True, [])
+        fmu.set({"F_upper": -2.0})
+        assert fmu.step(0.0, STEP) == fmi2Discard
+        assert any("input F_upper must be >= 0, got -2.0" in str(m) for m in fmu.messages)
+    finally:
+        fmu.close()

@@ -16,7 +16,8 @@
  * - output getters evaluate the model from the present inputs, in Initialization Mode from the
  *   state leaving it will set; after a discarded step, where they cannot, they return the
  *   outputs last evaluated; otherwise a failure is fmi2Error;
- * - every failure is logged naming its cause and printed on stderr once, until a call succeeds;
+ * - every failure is logged naming its cause (while logging is on: fmi2Instantiate's loggingOn,
+ *   then fmi2SetDebugLogging) and printed on stderr once, until a call succeeds;
  * - the FMU state is the instance struct and its flags, copied and serialised as bytes.
  */
 #include <stddef.h>
@@ -52,7 +53,7 @@ typedef struct {
 } gw_instance;
 
 static void gw_report(gw_instance *c, fmi2Status status, const char *message) {
-    if (c->callbacks.logger)
+    if (c->callbacks.logger && c->logging)  /* fmi2Instantiate's loggingOn, fmi2SetDebugLogging */
         c->callbacks.logger(c->callbacks.componentEnvironment, c->instance_name, status,
                             "logStatusError", "%s: %s", c->instance_name, message);
     if (strcmp(message, c->printed) != 0) {  /* printed once, until a call succeeds */
