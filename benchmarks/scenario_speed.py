@@ -128,8 +128,9 @@ def measure(editions: dict[str, system.System]) -> dict:
     native = runs["native"]["result"].recording
     differ = max(float(np.max(np.abs(np.asarray(native.columns[c]) - np.asarray(v)))
                        / max(float(np.max(np.abs(v))), 1e-300)) for c, v in rec.columns.items())
+    native_rms, _ = compare(native.time, native.columns, reference)
     return {"runs": runs, "reference": whole, "method": reference.method, "signal": signal,
-            "error": rms[signal], "differ": differ}
+            "error": rms[signal], "native_error": native_rms[signal], "differ": differ}
 
 
 def row(name: str, s: system.System, m: dict, native: list[str]) -> str:
@@ -139,7 +140,8 @@ def row(name: str, s: system.System, m: dict, native: list[str]) -> str:
             f"{', '.join(native) or 'none'} | {m['reference']:.2f} ({m['method']}) | "
             f"{py['wall']:.2f} | {py['wall'] / m['reference']:.2f} | {nat['wall']:.2f} | "
             f"{nat['wall'] / m['reference']:.2f} | {py['wall'] / nat['wall']:.1f} | {m['signal']} "
-            f"| {100 * m['error']:.3g} | {m['differ']:.1e} | {py['loop']:.1f} | {nat['loop']:.1f} "
+            f"| {100 * m['error']:.3g} | {100 * m['native_error']:.3g} | {m['differ']:.1e} "
+            f"| {py['loop']:.1f} | {nat['loop']:.1f} "
             f"| {nat['overhead']:.1f} | {costs} |")
 
 
@@ -164,12 +166,12 @@ def main() -> None:
             m = measure(editions)
         except ValueError as refused:  # a component the reference has no model of
             rows.append(f"| {name} | {s.experiment.step * 1e6:g} us | | {', '.join(native)} | | "
-                        f"| | | | | not compared: {refused} | | | | | | |")
+                        f"| | | | | not compared: {refused} | | | | | | | |")
         else:
             rows.append(row(name, s, m, native))
             for edition in folders:
                 ratios[edition].append(m["runs"][edition]["wall"] / m["reference"])
-            errors.append(m["error"])
+            errors += [m["error"], m["native_error"]]
         print(rows[-1], flush=True)
     options = "".join(f" --{k} {getattr(args, k):g}" for k in ("stop", "step")
                       if getattr(args, k) is not None) + "".join(f" {n}" for n in args.names)
@@ -192,17 +194,17 @@ def main() -> None:
         "instantiates its FMUs, steps and records; the reference assembles the system, "
         "integrates and evaluates every output at the recorded times (a system without states, "
         "such as zhang2019_feed_unit_milling, integrates nothing: its cost is the outputs). The "
-        "error is the RMS error of the signal `verify` judges relative to its range "
-        "([accuracy.md](accuracy.md) has the criterion and verdicts); the editions' difference "
+        "error is the RMS error of the signal `verify` judges relative to its range, with each "
+        "edition ([accuracy.md](accuracy.md) has the criterion and verdicts); the editions' difference "
         "is the largest difference of any recorded column relative to its largest value. Per "
         "macro step [us]: the stepping loop with each edition, and with the native edition the "
         "master's own part of it and each instance's FMI calls.", "",
         "| scenario | step | steps | native components | reference [s] | python co-simulation [s] "
-        "| ratio | native co-simulation [s] | ratio | speed-up | signal | error [%] | editions "
-        "differ by | python loop / step | native loop / step | master / step | FMI / step by "
-        "instance |",
+        "| ratio | native co-simulation [s] | ratio | speed-up | signal | python error [%] | "
+        "native error [%] | editions differ by | python loop / step | native loop / step | "
+        "master / step | FMI / step by instance |",
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
-        "| --- | --- |", *rows, "",
+        "| --- | --- | --- |", *rows, "",
         summary, "", NOTES]), f"python benchmarks/scenario_speed.py{options}", __file__,
         (f"{pages.SCENARIOS}/*.toml",))
     print(args.out)
