@@ -142,12 +142,16 @@ ABOUT = ("The native edition of a component is its Python definition (the compon
          "the component's translated unit. No Python interpreter runs inside; the FMU declares "
          "the same modelDescription variables (names, value references, units, start values, "
          "output dependencies) as the pythonfmu edition, so a master swaps one for the other "
-         "without changing a connection. The translator covers the subset the physics is "
-         "written in: numbers, tuples, objects and dicts whose shape the component's start "
-         "values fix, numpy arrays of known length, every call inlined, loops and branches, "
-         "`raise` with the Python message word for word; anything else it refuses, naming the "
-         "file, line and construct. Build one with `python -m "
-         "guideway_fmu.fmu_build.native.build NAME OUT.fmu`.")
+         "without changing a connection, and starts from the start values of its "
+         "modelDescription as that edition does. The translator covers the subset the physics "
+         "is written in: numbers, tuples, objects and dicts whose shape the component's start "
+         "values fix, numpy arrays of known length, arrays of run-time length up to 256 numbers "
+         "(a table a String parameter gives, a tooth count), String parameters that choose a law "
+         "(each law translated, chosen at run time), every call inlined, loops and branches, "
+         "try/except, `raise` with the Python message word for word, math's domain and range "
+         "errors; anything else it refuses, naming the file, line and construct. Build the "
+         "FMUs with `guideway-fmu build --edition native` (`--cross` adds win64 and darwin64 "
+         "binaries, cross-compiled with zig).")
 
 
 def status(name: str) -> str:
