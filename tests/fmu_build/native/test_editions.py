@@ -621,3 +621,25 @@ def test_the_logger_hears_of_failures_only_while_logging_is_on_and_stderr_always
         assert any("input F_upper must be >= 0, got -2.0" in str(m) for m in fmu.messages)
     finally:
         fmu.close()
+
+
+def test_baked_string_start_values_choose_the_law_and_their_xml_entities_are_read(
+        native_dir, fmu_dir, tmp_path):
+    from guideway_fmu.fmi.archive import with_start_values
+    script = _script("FeedKinematics", 20, seed=9)
+    rows = {}
+    for edition, folder in (("native", native_dir), ("python", fmu_dir)):
+        fmu = with_start_values(folder / "FeedKinematics.fmu", tmp_path / f"{edition}.fmu",
+                                {"profile": "oscillating", "table_file": "a&b <c>.csv"})
+        driven = Driven(fmu)
+        try:
+            assert driven.slave.getString([driven.refs["profile"].valueReference,
+                                           driven.refs["table_file"].valueReference]) == \
+                [b"oscillating", b"a&b <c>.csv"]
+        finally:
+            driven.close()
+        rows[edition] = run_script(fmu, {}, script, STEP)
+    assert rows["native"] == rows["python"]
+    unbaked = native_dir / "FeedKinematics.fmu"
+    assert rows["native"] == run_script(unbaked, {"profile": "oscillating"}, script, STEP)
+    assert rows["native"] != run_script(unbaked, {}, script, STEP)  # not the default law
