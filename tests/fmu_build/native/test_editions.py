@@ -40,12 +40,12 @@ NATIVE = {
 STEP = 1e-4  # s
 
 
-@pytest.fixture(scope="module")
-def native_dir(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("native")
-    for name in NATIVE:
-        build_native(registry.component(name), folder / f"{name}.fmu")
-    return folder
+@pytest.fixture(scope="session")
+def native_dir(fmu_dir):
+    """The session cache's native set (built once for the code, shared by the workers): the
+    native FMUs of NATIVE. Shared: a test that changes an FMU works on a copy."""
+    from guideway_fmu.fmu_build import cache
+    return cache.folder("native")
 
 
 def _script(name: str, steps: int, seed: int) -> list[dict]:
@@ -382,6 +382,7 @@ def test_contact_ehl_film_laws_run_natively_as_in_python(parameters, native_dir,
         assert b == pytest.approx(a, rel=1e-12, abs=1e-300), k
 
 
+@pytest.mark.slow
 def test_every_native_fmu_runs_in_a_plain_c_host_with_an_empty_environment_like_python(
         native_dir, fmu_dir, tmp_path):
     from guideway_fmu.fmu_build import host_env
@@ -399,6 +400,7 @@ def test_every_native_fmu_runs_in_a_plain_c_host_with_an_empty_environment_like_
         assert runs[0].outputs  # every Real output was read
 
 
+@pytest.mark.slow
 def test_an_ssp_of_native_fmus_with_baked_parameters_runs_in_libcosim_and_fmpy_as_in_our_master(
         native_dir, fmu_dir, tmp_path):
     """The native FMUs of a Soleimanian rig in an SSP package whose FMUs carry the scenario's
@@ -439,6 +441,7 @@ def test_an_ssp_of_native_fmus_with_baked_parameters_runs_in_libcosim_and_fmpy_a
                                    atol=1e-11 * scale, err_msg=name)
 
 
+@pytest.mark.slow
 def test_export_fmu_packs_the_native_set_and_runs_as_the_python_one(tmp_path, capsys):
     import fmpy
 
