@@ -107,7 +107,8 @@ def run_in_c_host(executable: Path, fmu: str | Path, environment: dict[str, str]
         archive.extractall(unpacked)
     outputs = [v for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
     h = step_size or (md.defaultExperiment.stepSize if md.defaultExperiment else 1e-4)
-    suffix = {"win64": ".dll", "darwin64": ".dylib"}.get(platform, ".so")
+    from .native.build import CROSS
+    suffix = CROSS[platform][1]
     binary = unpacked / "binaries" / platform / f"{md.coSimulation.modelIdentifier}{suffix}"
     command = [*launcher, str(executable), str(binary), (unpacked / "resources").as_uri(), md.guid,
                repr(float(h)), str(steps), *settings, *[str(v.valueReference) for v in outputs]]

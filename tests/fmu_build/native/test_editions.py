@@ -646,3 +646,29 @@ def test_baked_string_start_values_choose_the_law_and_their_xml_entities_are_rea
     unbaked = native_dir / "FeedKinematics.fmu"
     assert rows["native"] == run_script(unbaked, {"profile": "oscillating"}, script, STEP)
     assert rows["native"] != run_script(unbaked, {}, script, STEP)  # not the default law
+
+
+def test_values_a_failing_set_call_stored_before_its_failure_take_effect(native_dir, capfd):
+    """FMI leaves a failed call's partial effect open; here what was stored counts: the
+    parameter is used at the next step, not a model built from the old value."""
+    fmu = Driven(native_dir / "VerticalDynamics.fmu")
+    try:
+        fmu.start({}, {"F_ext": 10.0})
+        assert fmu.step(0.0, STEP) == fmi2OK
+        with pytest.raises(FMICallException):  # y is an output: the call fails there
+            fmu.slave.setReal([fmu.refs["mass"].valueReference, fmu.refs["y"].valueReference],
+                              [4.0, 0.0])
+        assert fmu.step(STEP, STEP) == fmi2OK
+        assert fmu.outputs()["y_ddot"] == pytest.approx(9.80665 + 10.0 / 4.0)  # hand value
+    finally:
+        fmu.close()
+    loss = Driven(native_dir / "FrictionPreloadLoss.fmu")
+    try:
+        loss.start({}, {})
+        refs = [loss.refs[n].valueReference for n in ("law", "profile")]
+        with pytest.raises(FMICallException):  # the profile is too long: refused
+            loss.slave.setString(refs, ["linear", "1 " * 5000])
+        assert loss.step(0.0, STEP) == fmi2Discard and loss.terminated  # 'linear' was stored
+    finally:
+        loss.close()
+    assert "got 'linear'" in capfd.readouterr().err

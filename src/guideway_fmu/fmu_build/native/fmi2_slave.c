@@ -408,6 +408,7 @@ static fmi2Status gw_set(gw_instance *c, const fmi2ValueReference vr[], size_t n
     for (i = 0; i < n; ++i) {
         const gw_variable *v = gw_find(vr[i]);
         if (!v || v->type != type || v->causality == GW_OUTPUT) {
+            gw_changed(c, parameter);  /* what the call stored before it failed counts */
             gw_report(c, fmi2Error, "unknown value reference, wrong type or not settable");
             return fmi2Error;
         }
@@ -429,7 +430,7 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t n, fmi2Boolean v[]) {
     return gw_get((gw_instance *)c, vr, n, GW_BOOLEAN, v);
 }
-/* String variables: the parameter that chooses a law (component.py), kept as its text. */
+/* String variables, kept as their text (component.py). */
 static const gw_variable *gw_string(gw_instance *c, fmi2ValueReference vr) {
     const gw_variable *v = gw_find(vr);
     if (v && v->type == GW_STRING) return v;
@@ -457,9 +458,10 @@ fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t n, const fmi2String v[]) {
     size_t i;
     for (i = 0; i < n; ++i) {
-        if (!gw_string((gw_instance *)c, vr[i])) return fmi2Error;
-        if (gw_text((gw_instance *)c, gw_find(vr[i]), v[i])) {
-            gw_report((gw_instance *)c, fmi2Error, ((gw_instance *)c)->ctx.message);
+        const gw_variable *var = gw_string((gw_instance *)c, vr[i]);
+        if (!var || gw_text((gw_instance *)c, var, v[i])) {
+            if (i) gw_changed((gw_instance *)c, true);  /* the texts stored before count */
+            if (var) gw_report((gw_instance *)c, fmi2Error, ((gw_instance *)c)->ctx.message);
             return fmi2Error;
         }
     }

@@ -56,12 +56,13 @@ static void gw_word(const char *text, long k, char *out, size_t size) {
 
 /* float(word) of word k: 0, or 1 when Python's float() refuses it (the value then NaN). C's
  * strtod reads hexadecimal numbers too, which float() refuses; digit underscores, which
- * float() accepts, are refused here. */
+ * float() accepts, are refused here, and so is a word too long for the buffer (never cut). */
 static int gw_word_double(const char *text, long k, double *value) {
-    char word[128], *end;
+    char word[512], *end;
     gw_word(text, k, word, sizeof word);
     *value = strtod(word, &end);
-    if (end == word || *end || strchr(word, 'x') || strchr(word, 'X')) {
+    if (end == word || *end || strchr(word, 'x') || strchr(word, 'X')
+        || strlen(word) == sizeof word - 1) {
         *value = NAN;
         return 1;
     }
