@@ -88,6 +88,12 @@ def run_time_arrays(x, n):
             + float(np.all(np.isfinite(values))) + 1e-4 * len(nodes) + 1e-5 * nodes.size)
 
 
+def known_count_arrays(x, y):
+    nodes = np.linspace(x, y, 5)
+    flat = np.linspace(x, x, 3)  # a zero step: numpy's other branch
+    return float(np.interp(0.5 * (x + y), nodes, nodes ** 2)) + float(np.sum(flat)) + nodes[2]
+
+
 def shapes_and_tuples(x, y):
     v = np.array([x, y])
     if v.shape != (2,) or (x, y) == (1.5, y) or v.ndim != 1:
@@ -146,6 +152,7 @@ CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
          (while_loop, [(2.0, 1e-12), (1e6, 1e-9), (0.25, 1e-10)]),
          (run_time_arrays, [(1.0, 2.0), (2.5, 7.0), (-0.5, 40.0), (1.0, 1.0), (0.7, 256.0)]),
          (shapes_and_tuples, [(1.0, 2.0), (1.5, 2.0)]),
+         (known_count_arrays, [(0.1, 0.7), (-3.0, 1e-3), (1e-300, 2e-300)]),
          (cached, [(0.5, 3.0)]),
          (caught, [(4.0, 1.0)]),
          (guarded, [(-1.0, 0.0), (0.0, 0.5), (4.0, 1.0), (4.0, 3.0)])]

@@ -374,22 +374,15 @@ def _float(tr, args, kwargs):
 
 
 def _linspace(tr, args, kwargs):
-    """np.linspace(start, stop, num) with num known: numpy's arithmetic (k step + start, the
-    step delta / (num - 1); where it is 0, k / (num - 1) delta + start; the last node stop)."""
+    """np.linspace(start, stop, num) (numpy's arithmetic: Vectors.linspace); with num known, an
+    array of that length."""
     start, stop, num = (list(args) + [kwargs.get("num")])[:3]
     if isinstance(num, Scalar) and num.ctype == "long":
         return tr.linspace(tr.scalar(start), tr.scalar(stop), num)
-    if not (isinstance(num, Const) and isinstance(num.value, (int, np.integer)) and num.value >= 2):
-        raise tr.error("np.linspace is translated for at least 2 nodes known when the C is written")
-    n = int(num.value)
-    start, stop = tr.scalar(start), tr.scalar(stop)
-    delta, step = tr.out.declare("double", "delta"), tr.out.declare("double", "step")
-    tr.emit(f"{delta} = (double){stop.code} - (double){start.code};")
-    tr.emit(f"{step} = {delta} / {float(n - 1)!r};")
-    nodes = [Scalar("double", f"(({step} == 0.0) ? ({float(k)!r} / {float(n - 1)!r}) * {delta} "
-                              f": {float(k)!r} * {step}) + (double){start.code}")
-             for k in range(n - 1)]
-    return Array([*(tr.variable(node, tr.frame) for node in nodes), Scalar("double", f"((double){stop.code})")])
+    if not (isinstance(num, Const) and isinstance(num.value, (int, np.integer)) and num.value >= 0):
+        raise tr.error("np.linspace is translated for a whole number of nodes only")
+    nodes = tr.linspace(tr.scalar(start), tr.scalar(stop), Scalar("long", f"{int(num.value)}L"))
+    return Array([tr.variable(tr.element(nodes, str(k)), tr.frame) for k in range(num.value)])
 
 
 def _interp(tr, args, kwargs):
