@@ -1,4 +1,4 @@
-"""Scalar root finding with a bound and a named failure, shared by the physics' solves.
+"""Root finding with a bound and a named failure, shared by the physics' solves.
 
 :func:`bracketed_root` is SciPy's Brent method on a bracket the caller found, limited to
 MAX_ITERATIONS; where it cannot answer it raises an error that says what was being solved for
@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from scipy.optimize import brentq
 
 MAX_ITERATIONS = 100  # Brent iterations of one root (SciPy's default)
@@ -29,3 +30,24 @@ def bracketed_root(f, low: float, high: float, what: str, **options) -> float:
         raise RuntimeError(f"{what}: Brent's method did not converge within {MAX_ITERATIONS} "
                            f"iterations between {low:.6g} and {high:.6g}")
     return float(root)
+
+
+def newton_system(residual, jacobian, start, tolerance: float, iterations: int):
+    """(x, max |residual(x)|) after Newton's method from ``start``: x -= J(x)^-1 r(x) until
+    max |r| <= ``tolerance`` or ``iterations`` steps. The caller judges the answer by the error
+    (NaN or inf when the residual overflowed or the Jacobian was singular): Newton's method
+    converges quadratically from a start near the root, so a caller that tracks a root starts
+    from its last answer and falls back to continuation where this fails."""
+    x = np.asarray(start, dtype=float)
+    r = residual(x)
+    error = float(np.max(np.abs(r)))
+    for _ in range(iterations):
+        if error <= tolerance or not np.isfinite(error):
+            break
+        try:
+            x = x - np.linalg.solve(jacobian(x), r)
+        except np.linalg.LinAlgError:  # singular: no ball resists some motion
+            return x, math.inf
+        r = residual(x)
+        error = float(np.max(np.abs(r)))
+    return x, error

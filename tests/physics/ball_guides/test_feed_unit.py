@@ -71,7 +71,7 @@ def test_preload_release_hand_calculation():
     a = np.radians(45.0)
     release = 8 * N * 2**1.5 * PRELOAD * np.sin(a)
     state = u.equilibrium((0.0, -release, 0.0, 0.0, 0.0))
-    upper = u.points[:, 2] > 0
+    upper = u.z > 0
     np.testing.assert_allclose(state.q[1], -u.rest / np.sin(a), rtol=1e-9)
     np.testing.assert_allclose(state.approaches[~upper], 0.0, atol=1e-9 * u.rest)
     np.testing.assert_allclose(state.loads[upper], 2**1.5 * PRELOAD, rtol=1e-9)
@@ -93,11 +93,11 @@ def test_contact_angle_follows_eqs_9_and_10_hand_calculation():
     u = unit(True)
     q = np.array([0.0, -3e-6, 0.0, 0.0, 0.0])
     approach, normal, length = u.contact(q)
-    ball = np.argmax((u.points[:, 1] > 0.15) & (u.points[:, 2] > 0))  # slider 1, row 1
+    ball = np.argmax((u.y > 0.15) & (u.z > 0))  # slider 1, row 1
     a, L0 = np.radians(45.0), u.distance
     expected_length = np.hypot(L0 * np.sin(a) + 3e-6, L0 * np.cos(a))
     np.testing.assert_allclose(length[ball], expected_length, rtol=1e-12)
-    np.testing.assert_allclose(abs(normal[ball, 1]), (L0 * np.sin(a) + 3e-6) / expected_length,
+    np.testing.assert_allclose(abs(normal[1][ball]), (L0 * np.sin(a) + 3e-6) / expected_length,
                                rtol=1e-12)
     np.testing.assert_allclose(approach[ball], u.rest + expected_length - L0, rtol=1e-12)
 
@@ -135,7 +135,7 @@ def test_angle_change_raises_vertical_and_lowers_lateral_stiffness_conclusion_1(
     lateral_c, vertical_c = constant.unit_stiffness(c)
     assert vertical_a > 1.05 * vertical_c and lateral_a < 0.98 * lateral_c
     assert abs(a.q[1]) < abs(c.q[1])  # less vertical deformation under the same load
-    upper = changing.points[:, 2] > 0
+    upper = changing.z > 0
     assert np.all(np.degrees(a.angles[upper]) > 45.0)  # the loaded rows steepen
     assert np.all(np.degrees(a.angles[~upper]) < 45.0)
 

@@ -4,9 +4,8 @@ five errors delta_y, delta_z, epsilon_x, epsilon_y, epsilon_z; SI units.
 
 Frame: origin at the table's centre in the plane of the ball rows' centres, x along the travel,
 y across, z up. The table is rigid, the rails fixed. Its displacement q = (delta_y, delta_z,
-epsilon_x, epsilon_y, epsilon_z) moves a table point r = (x, y, z) by the small-angle transform
-of the paper's eq. 1: d_x = epsilon_y z - epsilon_z y, d_y = delta_y + epsilon_z x - epsilon_x z,
-d_z = delta_z + epsilon_x y - epsilon_y x. The travel x itself is the feed drive's: the drive
+epsilon_x, epsilon_y, epsilon_z) moves a table point (x, y, z) by the small-angle transform
+of the paper's eq. 1 (:func:`displacement`). The travel x itself is the feed drive's: the drive
 takes F_x at the origin, the guides carry the rest.
 
 Layout: sliders 1..4 at (+W_x, +W_y), (+W_x, -W_y), (-W_x, -W_y), (-W_x, +W_y); each with four
@@ -26,29 +25,35 @@ preloaded). Under the displacement d of the slider groove's curvature centre:
 * at a constant angle: delta = delta_p + c . d, the normal stays c.
 
 Q = K delta^1.5 (0 once a ball loses contact) pushes the table along minus the normal. The
-table settles where the balls' forces and moments balance the load (eq. 20); solved by
-scipy.optimize.root with the analytic tangent stiffness. The paper's rigid-table relations
-(eqs. 16, 17, 19) follow from the transform and need no separate equations here.
+table settles where the balls' forces and moments balance the load (eq. 20); solved by Newton's
+method with the analytic tangent stiffness (roots.newton_system), from the last answer, with
+load steps where it does not converge. The paper's rigid-table relations (eqs. 16, 17, 19)
+follow from the transform and need no separate equations here. Per-ball quantities are 1-D
+arrays over the balls (slider by slider, row by row, along x), a pair (y, z) for a vector.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import root
 
 from .. import checks
 from . import hertz_point
 from .carriage_5dof import ball_positions
 from ..dynamics import ContinuousModel
+from ..roots import newton_system
 
 ERRORS = ("delta_y", "delta_z", "epsilon_x", "epsilon_y", "epsilon_z")
 SLIDER_SIGNS = ((1, 1), (1, -1), (-1, -1), (-1, 1))  # (x, y) sides of sliders 1..4
 ROW_SIGNS = ((1, 1), (-1, 1), (-1, -1), (1, -1))  # (y, z) sides of rows 1..4 on a slider
+SLIDER_X, SLIDER_Y = np.array(SLIDER_SIGNS, dtype=float).T
+ROW_Y, ROW_Z = np.array(ROW_SIGNS, dtype=float).T
 #: static contact-pressure limit of ball bearings behind ISO 76's basic static load rating [Pa]
 PRESSURE_LIMIT = 4.2e9
-#: load steps tried, in turn, when the direct solve does not converge
+#: load steps tried, each 4 times finer than the last, when the direct solve does not converge
 CONTINUATION_STEPS = (4, 16, 64)
+#: Newton iterations of one solve at most (from a near start it converges in 2-4)
+NEWTON_ITERATIONS = 50
 
 
 @dataclass(frozen=True)
@@ -76,59 +81,56 @@ class Layout:
                              f"must not exceed 2 half_span_x ({2 * self.half_span_x:g} m): the "
                              f"sliders would overlap")
 
-    def balls(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Every ball's point (N, 3) [m], compressing direction c (N, 2) and slider index 0..3,
-        slider by slider, row by row."""
-        along = ball_positions(self.balls_per_row, self.pitch)
-        c, s = np.cos(self.contact_angle), np.sin(self.contact_angle)
-        points, directions, sliders = [], [], []
-        for m, (sx, sy) in enumerate(SLIDER_SIGNS):
-            for ry, rz in ROW_SIGNS:
-                for x in along:
-                    points.append((sx * self.half_span_x + x,
-                                   sy * self.half_span_y + ry * self.row_spacing_y / 2,
-                                   rz * self.row_spacing_z / 2))
-                    directions.append((-ry * c, -rz * s))
-                    sliders.append(m)
-        return np.array(points), np.array(directions), np.array(sliders)
+    def balls(self) -> tuple:
+        """Every ball's point (x, y, z) [m], compressing direction (c_y, c_z) and slider index
+        0..3, each an array over the balls: slider by slider, row by row, along x."""
+        n = self.balls_per_row
+        row_y, row_z = np.tile(np.repeat(ROW_Y, n), 4), np.tile(np.repeat(ROW_Z, n), 4)
+        x = np.repeat(SLIDER_X * self.half_span_x, 4 * n) + np.tile(ball_positions(n, self.pitch), 16)
+        y = np.repeat(SLIDER_Y * self.half_span_y, 4 * n) + row_y * self.row_spacing_y / 2
+        z = row_z * self.row_spacing_z / 2
+        compress = (-np.cos(self.contact_angle) * row_y, -np.sin(self.contact_angle) * row_z)
+        return (x, y, z), compress, np.repeat(np.arange(4), 4 * n)
 
 
-def transfer(points) -> np.ndarray:
-    """(N, 2, 5) matrices taking q to the (d_y, d_z) of each table point (N, 3) [m]."""
-    p = np.atleast_2d(np.asarray(points, dtype=float))
-    g = np.zeros((len(p), 2, 5))
-    g[:, 0, 0], g[:, 0, 2], g[:, 0, 4] = 1.0, -p[:, 2], p[:, 0]
-    g[:, 1, 1], g[:, 1, 2], g[:, 1, 3] = 1.0, p[:, 1], -p[:, 0]
-    return g
+def displacement(q, x, y, z) -> tuple:
+    """(d_x, d_y, d_z) [m] of the table point (x, y, z) [m] (numbers or arrays) at the
+    displacement q (eq. 1)."""
+    return (q[3] * z - q[4] * y, q[0] + q[4] * x - q[2] * z, q[1] + q[2] * y - q[3] * x)
 
 
-def generalized_load(force, point, moment=(0.0, 0.0, 0.0)) -> np.ndarray:
+def moment(point, force) -> tuple:
+    """The moment r x F [N m] of the force (F_x, F_y, F_z) [N] at the point (x, y, z) [m] about
+    the origin (numbers or arrays)."""
+    (x, y, z), (f_x, f_y, f_z) = point, force
+    return (y * f_z - z * f_y, z * f_x - x * f_z, x * f_y - y * f_x)
+
+
+def generalized_load(force, point, moment_=(0.0, 0.0, 0.0)) -> np.ndarray:
     """(F_y, F_z, M_x, M_y, M_z) on the table [N, N m] of the force (F_x, F_y, F_z) [N] at the
     point (x, y, z) [m] plus the moment (M_x, M_y, M_z) [N m]; F_x goes to the drive at the
     origin, its moment about the origin to the guides."""
     f = checks.finite("force", force)
-    r = checks.finite("point", point)
-    torque = np.cross(r, f) + checks.finite("moment", moment)
+    torque = np.array(moment(checks.finite("point", point), f)) + checks.finite("moment", moment_)
     return np.array([f[1], f[2], *torque])
 
 
 def point_displacement(q, point) -> np.ndarray:
     """(d_x, d_y, d_z) [m] of the table point (x, y, z) [m] at the displacement q (eq. 1)."""
-    q = np.asarray(q, dtype=float)
-    x, y, z = np.asarray(point, dtype=float)
-    return np.array([q[3] * z - q[4] * y, *(transfer([(x, y, z)])[0] @ q)])
+    return np.array(displacement(np.asarray(q, dtype=float), *point))
 
 
 @dataclass(frozen=True)
 class Equilibrium:
     """The table at rest under a load: q, each ball's load [N], approach [m] and contact angle
-    [rad], and the tangent stiffness (5 x 5) with each ball's 2 x 2 share."""
+    [rad], each ball's stiffness (t_yy, t_yz, t_zz) against its slider's (d_y, d_z) [N/m] and
+    the table's tangent stiffness (5 x 5)."""
 
     q: np.ndarray
     loads: np.ndarray
     approaches: np.ndarray
     angles: np.ndarray
-    ball_tangents: np.ndarray
+    ball_tangents: tuple
     tangent: np.ndarray
 
     @property
@@ -147,83 +149,81 @@ class FeedUnit:
         self.k_h = hertz_point.ball_constant(ball)
         self.rest = float(hertz_point.approach(self.k_h, self.preload))
         self.distance = (2.0 * ball.conformity - 1.0) * ball.diameter + self.rest
-        self.points, self.compress, self.slider = layout.balls()
-        self.g = transfer(self.points)
+        (self.x, self.y, self.z), (self.c_y, self.c_z), self.slider = layout.balls()
 
     def contact(self, q):
-        """(approach [m], unit normal (N, 2), centre distance |v| [m]) of every ball at q."""
-        d = self.g @ np.asarray(q, dtype=float)
+        """(approach [m], unit normal (n_y, n_z), centre distance |v| [m] or None at a constant
+        angle) of every ball at q."""
+        _, d_y, d_z = displacement(q, self.x, self.y, self.z)
         if not self.angle_change:
-            return self.rest + np.einsum("ij,ij->i", self.compress, d), self.compress, None
-        v = self.distance * self.compress + d
-        length = np.linalg.norm(v, axis=1)
-        return self.rest + length - self.distance, v / length[:, None], length
+            return self.rest + self.c_y * d_y + self.c_z * d_z, (self.c_y, self.c_z), None
+        v_y, v_z = self.distance * self.c_y + d_y, self.distance * self.c_z + d_z
+        length = np.hypot(v_y, v_z)
+        return self.rest + length - self.distance, (v_y / length, v_z / length), length
+
+    def generalized(self, f_y, f_z) -> np.ndarray:
+        """(F_y, F_z, M_x, M_y, M_z) [N, N m] of the forces (0, f_y, f_z) [N] at the balls."""
+        torque = moment((self.x, self.y, self.z), (0.0, f_y, f_z))
+        return np.array([np.sum(f_y), np.sum(f_z), *(np.sum(m) for m in torque)])
 
     def restoring(self, q) -> np.ndarray:
-        """Generalized force of the balls on the table, - sum G^T Q n [N, N m]."""
-        approach, normal, _ = self.contact(q)
+        """Generalized force of the balls on the table [N, N m]: each pushes along minus its
+        normal with its load."""
+        approach, (n_y, n_z), _ = self.contact(q)
         loads = hertz_point.load(self.k_h, approach)
-        return -np.einsum("nij,ni->j", self.g, loads[:, None] * normal)
+        return self.generalized(-loads * n_y, -loads * n_z)
 
-    def ball_tangents(self, q) -> np.ndarray:
-        """(N, 2, 2) stiffness of each ball against its slider's (d_y, d_z) [N/m]: k n n^T, plus
-        the turning of the contact line (Q / |v|)(I - n n^T) with the angle change."""
-        approach, normal, length = self.contact(q)
+    def ball_tangents(self, q) -> tuple:
+        """(t_yy, t_yz, t_zz): each ball's stiffness against its slider's (d_y, d_z) [N/m],
+        k n n^T, plus the turning of the contact line (Q / |v|)(I - n n^T) with the angle
+        change."""
+        approach, (n_y, n_z), length = self.contact(q)
         k = hertz_point.stiffness(self.k_h, approach)
-        nn = normal[:, :, None] * normal[:, None, :]
-        out = k[:, None, None] * nn
-        if length is not None:
-            loads = hertz_point.load(self.k_h, approach)
-            out += (loads / length)[:, None, None] * (np.eye(2) - nn)
-        return out
+        turn = 0.0 if length is None else hertz_point.load(self.k_h, approach) / length
+        return (k * n_y**2 + turn * (1.0 - n_y**2), (k - turn) * n_y * n_z,
+                k * n_z**2 + turn * (1.0 - n_z**2))
 
     def tangent(self, q, ball_tangents=None) -> np.ndarray:
-        """Tangent stiffness of the table, sum G^T T G (5 x 5) [N/m, N, N m]."""
-        t = self.ball_tangents(q) if ball_tangents is None else ball_tangents
-        return np.einsum("nia,nij,njb->ab", self.g, t, self.g)
+        """Tangent stiffness of the table, sum G^T T G (5 x 5) [N/m, N, N m]: G's column a is
+        the balls' (d_y, d_z) under a unit q_a (eq. 1), T each ball's stiffness."""
+        t_yy, t_yz, t_zz = self.ball_tangents(q) if ball_tangents is None else ball_tangents
+        columns = [displacement(unit, self.x, self.y, self.z)[1:] for unit in np.eye(5)]
+        pushed = [(t_yy * g_y + t_yz * g_z, t_yz * g_y + t_zz * g_z) for g_y, g_z in columns]
+        return np.array([[np.sum(g_y * p_y + g_z * p_z) for p_y, p_z in pushed]
+                         for g_y, g_z in columns])
 
-    def _solve(self, load, start):
-        def residual(q):
-            return self.restoring(q) + load
-
-        def jacobian(q):
-            return -self.tangent(q)
-
-        found = root(residual, start, jac=jacobian, method="hybr")
-        return found.x, float(np.max(np.abs(residual(found.x))))
+    def _solve(self, load, start, tolerance):
+        return newton_system(lambda q: self.restoring(q) + load, lambda q: -self.tangent(q),
+                             start, tolerance, NEWTON_ITERATIONS)
 
     def equilibrium(self, load, start=None) -> Equilibrium:
         """The table's rest under the generalized load (F_y, F_z, M_x, M_y, M_z) [N, N m],
-        searched from ``start`` (default: the linear answer). Converged when the force balance
-        holds to 1e-9 of the load or the preload; load steps are tried if a direct solve fails."""
+        searched from ``start`` (default: unloaded). Converged when the force balance holds to
+        1e-9 of the load or the preload; load steps are tried if a direct solve fails."""
         load = checks.finite("load", load)
-        scale = max(float(np.max(np.abs(load))), self.preload)
-        q0 = (np.linalg.solve(self.tangent(np.zeros(5)), load) if start is None
-              else np.asarray(start, dtype=float))
-        q, error = self._solve(load, q0)
+        tolerance = 1e-9 * max(float(np.max(np.abs(load))), self.preload)
+        q, error = self._solve(load, np.zeros(5) if start is None else start, tolerance)
         for steps in CONTINUATION_STEPS:
-            if error <= 1e-9 * scale:
+            if error <= tolerance:
                 break
             q = np.zeros(5)
-            for fraction in np.arange(1, steps + 1) / steps:
-                q, error = self._solve(fraction * load, q)
-        if not error <= 1e-9 * scale:  # NaN: not converged either
+            for step in range(1, steps + 1):
+                q, error = self._solve(step / steps * load, q, tolerance)
+        if not error <= tolerance:  # NaN: not converged either
             raise ValueError(f"no static equilibrium found under the load {load.tolist()} "
                              f"(F_y, F_z, M_x, M_y, M_z): force balance off by {error:.3g}")
-        approach, normal, _ = self.contact(q)
+        approach, (n_y, n_z), _ = self.contact(q)
         tangents = self.ball_tangents(q)
         return Equilibrium(q, hertz_point.load(self.k_h, approach), approach,
-                           np.arctan2(np.abs(normal[:, 1]), np.abs(normal[:, 0])), tangents,
+                           np.arctan2(np.abs(n_z), np.abs(n_y)), tangents,
                            self.tangent(q, tangents))
 
     def slider_stiffness(self, state: Equilibrium) -> np.ndarray:
         """(4, 2) lateral and vertical tangent stiffness [N/m] of each slider: its balls' shares
         summed, the slider moved in y or z alone."""
-        out = np.zeros((4, 2))
-        for m in range(4):
-            t = state.ball_tangents[self.slider == m].sum(axis=0)
-            out[m] = t[0, 0], t[1, 1]
-        return out
+        t_yy, _, t_zz = state.ball_tangents
+        return np.array([(np.sum(t_yy[self.slider == m]), np.sum(t_zz[self.slider == m]))
+                         for m in range(4)])
 
     def unit_stiffness(self, state: Equilibrium) -> tuple[float, float]:
         """Lateral and vertical stiffness of the whole unit [N/m]: a force at the table's centre
@@ -243,12 +243,12 @@ class FeedUnitModel(ContinuousModel):
     (point_x - x_feed, point_y, point_z) [m] on the table (x_feed the table's travel, for a tool
     that stands while the table moves); outputs the five errors at the table's centre, the
     displacement of the load point (tool_d_x, tool_d_y, tool_d_z) [m] and the largest ball load
-    [N]. Each solve starts from the last one's answer."""
+    [N]. Each solve starts from the last one's answer (the first from the unloaded table)."""
 
     inputs = ("F_x", "F_y", "F_z", "point_x", "point_y", "point_z", "x_feed")
 
     def __init__(self, unit: FeedUnit):
-        self.unit, self._last = unit, None
+        self.unit, self._last = unit, np.zeros(5)
 
     def outputs(self, t, state, inputs, wanted=None):
         point = (inputs["point_x"] - inputs["x_feed"], inputs["point_y"], inputs["point_z"])
