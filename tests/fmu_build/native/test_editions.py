@@ -36,8 +36,16 @@ NATIVE = {
     **{name: {"F_upper": (0.0, 900.0), "F_lower": (0.0, 900.0), "u": (-0.2, 0.2), "x": (-0.3, 1.3)}
        for name in ("FrictionPositionDependent", "FrictionBallToBall", "FrictionPreloadLoss")},
     "MillingForce": {"u_feed": (-0.05, 0.05)},
+    "FeedUnitErrors": {"F_x": (-2e3, 2e3), "F_y": (-2e3, 2e3), "F_z": (-6e3, 2e3),
+                       "point_x": (-0.1, 0.1), "point_y": (-0.1, 0.1), "point_z": (0.0, 0.2),
+                       "x_feed": (-0.05, 0.05)},
 }
 STEP = 1e-4  # s
+#: components whose outputs come from an iterative solve: the editions' iterates round
+#: differently (numpy's LAPACK against gw_solve), so their answers agree to the solve's
+#: tolerance only: of each output's largest magnitude over the script (FeedUnitErrors: force
+#: balance to 1e-9 of the load, the errors then to about that share of the largest)
+SOLVED = {"FeedUnitErrors": 1e-8}
 
 
 @pytest.fixture(scope="session")
@@ -58,9 +66,12 @@ def test_native_outputs_equal_the_python_edition_step_by_step(name, native_dir, 
     script = _script(name, 40, seed=len(name))
     python = run_script(fmu_dir / f"{name}.fmu", {}, script, STEP)
     native = run_script(native_dir / f"{name}.fmu", {}, script, STEP)
+    largest = {output: max(abs(row[output]) for row in python) for output in python[0]}
     for k, (a, b) in enumerate(zip(python, native)):
         for output in a:  # exp and tanh may differ in the last bit between numpy and libm
-            assert b[output] == pytest.approx(a[output], rel=1e-13, abs=1e-300), (k, output)
+            close = pytest.approx(a[output], rel=1e-13, abs=SOLVED.get(name, 0.0) * largest[output]
+                                  or 1e-300)
+            assert b[output] == close, (k, output)
 
 
 @pytest.mark.parametrize("name", NATIVE)
@@ -85,7 +96,9 @@ BAD = [("VerticalDynamics", {"mass": -1.0}, "Carriage.mass must be > 0, got -1.0
        ("ContactDryHertz", {"preload": -5.0}, "preload"),
        ("HorizontalRig", {"mass": math.inf}, "mass must be finite, got inf"),
        ("FrictionDahl", {"second_share": 0.5, "third_share": 0.75},
-        "third_share must lie in [0.0, 0.5], got 0.75")]
+        "third_share must lie in [0.0, 0.5], got 0.75"),
+       ("FeedUnitErrors", {"conformity": 0.45}, "conformity must be > 0.5"),
+       ("FeedUnitErrors", {"balls_per_row": 50}, "the sliders would overlap")]
 
 
 @pytest.mark.parametrize("name, parameters, words", BAD)

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
+import scipy.optimize
+import scipy.special
 from compiled import compiled
 
 from guideway_fmu.fmu_build.native.source import TranslationError
@@ -143,6 +145,45 @@ def guarded(x, y):
             + (2.0 if x <= 0.0 or math.log(x) > y else 0.0) + (math.sqrt(-x) if x < 0.0 else x))
 
 
+def _held_or_computed(held, x, flag):
+    if flag > 0.0:
+        return held
+    return held * x
+
+
+def held_or_computed(x, flag):
+    """Branches that return an array held elsewhere and a computed one: the computed one must
+    not be written into the held one (read again after the merge)."""
+    held = np.arange(1, int(abs(flag)) + 3) * 1.0  # of run-time length
+    out = _held_or_computed(held, x, flag)
+    return float(out[0] + 10.0 * held[0])
+
+
+def repeated_and_ranged(x, n):
+    """np.repeat and np.tile by a run-time count, np.arange(start, stop), np.max, .min()."""
+    count = int(n)
+    values = np.tile(np.repeat(np.array([x, -x, 2.0 * x]), count), 2) + np.arange(1, 3 * count * 2 + 1)
+    return float(np.max(values) - 3.0 * values.min() + np.sum(values))
+
+
+def solved(x, y):
+    """np.linalg.solve of a 3 x 3 system that needs row exchanges."""
+    a = np.array([[1e-3 * x, 2.0, 1.0], [3.0, y, -1.0], [1.0, 1.0, 4.0 + x]])
+    z = np.linalg.solve(a, np.array([1.0, x, y]))
+    return float(z[0] + 10.0 * z[1] + 100.0 * z[2])
+
+
+def elliptic(m, _):
+    return float(scipy.special.ellipk(m) + 3.0 * scipy.special.ellipe(m))
+
+
+def bracketed(x, y):
+    """scipy.optimize.brentq with a closure, the iteration count and the converged flag."""
+    root, info = scipy.optimize.brentq(lambda t: t**3 - x * t - y, -10.0, 10.0, xtol=1e-14,
+                                       rtol=1e-14, maxiter=100, full_output=True, disp=False)
+    return root if info.converged else math.nan
+
+
 CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
          (branches_merge, [(2.0, 1.0), (-2.0, 1.0), (0.5, 1.0)]),
          (optional_object, [(2e-6, 1e6), (2e-6, 0.0), (-1.0, 3.0)]),
@@ -155,7 +196,38 @@ CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
          (known_count_arrays, [(0.1, 0.7), (-3.0, 1e-3), (1e-300, 2e-300)]),
          (cached, [(0.5, 3.0)]),
          (caught, [(4.0, 1.0)]),
-         (guarded, [(-1.0, 0.0), (0.0, 0.5), (4.0, 1.0), (4.0, 3.0)])]
+         (guarded, [(-1.0, 0.0), (0.0, 0.5), (4.0, 1.0), (4.0, 3.0)]),
+         (held_or_computed, [(2.0, 1.0), (2.0, -1.0)]),
+         (repeated_and_ranged, [(0.5, 1.0), (-2.0, 7.0)])]
+
+
+@pytest.mark.parametrize("function, inputs, tolerance", [
+    (solved, [(0.0, 1.0), (2.0, -3.0), (1e3, 1e-3)], 1e-13),  # LU's rounding against LAPACK's
+    (elliptic, [(0.0, 0), (0.3, 0), (-2.0, 0), (0.9, 0), (1 - 1e-12, 0)], 1e-14),
+    (bracketed, [(1.0, 0.5), (0.0, 8.0), (30.0, -1.0)], 1e-13)],  # Brent's iterates, to xtol
+    ids=["solve", "ellipk-ellipe", "brentq"])
+def test_library_functions_agree_with_numpy_and_scipy_to_their_precision(function, inputs,
+                                                                         tolerance):
+    c = compiled(function, 2)
+    for args in inputs:
+        assert c(*args) == pytest.approx(function(*args), rel=tolerance, abs=0.0), args
+
+
+def test_a_singular_solve_and_a_bracket_without_a_sign_change_fail_in_numpys_words():
+    with pytest.raises(ValueError, match="LinAlgError: Singular matrix"):
+        compiled(singular, 2)(1.0, 2.0)
+    with pytest.raises(np.linalg.LinAlgError, match="Singular matrix"):
+        singular(1.0, 2.0)
+    with pytest.raises(ValueError, match="f\\(a\\) and f\\(b\\) must have different signs"):
+        compiled(lambda_free_bracket, 2)(1.0, 2000.0)
+
+
+def singular(x, y):
+    return float(np.linalg.solve(np.array([[1.0, 2.0], [x, y]]), np.array([1.0, 1.0]))[0])
+
+
+def lambda_free_bracket(x, y):
+    return scipy.optimize.brentq(lambda t: t * t + x + y, -1.0, 1.0, disp=False)
 
 
 @pytest.mark.parametrize("function, inputs", CASES, ids=[c[0].__name__ for c in CASES])

@@ -12,6 +12,7 @@ from .values import (
     Const,
     Dict,
     Joined,
+    Listed,
     Masked,
     Message,
     Obj,
@@ -420,7 +421,7 @@ class Expressions:
                 parts.extend(value.parts)
             elif isinstance(value, (Text, Word)):
                 parts.append((value, spec, conversion))
-            elif type(value) is Tuple and not spec:  # a tuple's str is its repr
+            elif type(value) in (Tuple, Array, Listed) and not spec:  # str is repr here
                 parts.extend(self.tuple_repr(value))
             else:
                 parts.append((self.scalar(value), spec, conversion))
@@ -429,7 +430,13 @@ class Expressions:
         return Message(parts)
 
     def tuple_repr(self, value: Tuple) -> list:
-        """The message parts of repr(tuple) of numbers and text: (a, b) or (a,)."""
+        """The message parts of repr(tuple) of numbers and text: (a, b) or (a,); of a list
+        (``tolist()``) [a, b]; of a 1-D array array([a, b]) with each number as Python writes
+        it (numpy pads and shortens them)."""
+        if isinstance(value, (Array, Listed)):
+            inner = self.tuple_repr(Tuple(value.items))[1:-1]
+            return [Const("array([" if isinstance(value, Array) else "["), *inner,
+                    Const("])" if isinstance(value, Array) else "]")]
         parts = [Const("(")]
         for k, item in enumerate(value.items):
             if k:

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #define GW_MESSAGE_SIZE 1024
+#define GW_PI 3.14159265358979323846
 
 typedef struct {
     char message[GW_MESSAGE_SIZE]; /* why the last translated call failed */
@@ -204,6 +205,126 @@ static double gw_interp(double x, long n, const double *xp, const double *fp) {
         if (isnan(r) && fp[lo] == fp[lo + 1]) r = fp[lo];
     }
     return r;
+}
+
+/* scipy.special.ellipk(m) and ellipe(m), the complete elliptic integrals of the first and second
+ * kind of parameter m <= 1, by the arithmetic-geometric mean (Abramowitz and Stegun 17.6.1-4):
+ * K = pi / (2 M(1, sqrt(1 - m))), E = K (1 - sum_n 2^(n-1) c_n^2) with c_0^2 = m. NaN beyond 1. */
+static double gw_agm(double m, double *weighted) {
+    double a = 1.0, b = sqrt(1.0 - m), c, t, power = 0.5;
+    int n;
+    *weighted = 0.5 * m;
+    for (n = 0; n < 64 && fabs(a - b) > 1e-16 * a; ++n) {
+        c = 0.5 * (a - b);
+        t = 0.5 * (a + b);
+        b = sqrt(a * b);
+        a = t;
+        power *= 2.0;
+        *weighted += power * c * c;
+    }
+    return a;
+}
+
+static double gw_ellipk(double m) {
+    double weighted;
+    if (isnan(m) || m > 1.0) return NAN;
+    if (m == 1.0) return INFINITY;
+    return GW_PI / (2.0 * gw_agm(m, &weighted));
+}
+
+static double gw_ellipe(double m) {
+    double weighted, a;
+    if (isnan(m) || m > 1.0) return NAN;
+    if (m == 1.0) return 1.0;
+    a = gw_agm(m, &weighted);
+    return GW_PI / (2.0 * a) * (1.0 - weighted);
+}
+
+/* scipy.optimize.brentq's contract by Brent's method (Brent 1973, ch. 4), driven by the caller,
+ * which evaluates f: the root lies between b and c; a is the previous b. Converged when f(b) is
+ * 0 or the bracket's half-width is at most (xtol + rtol |b|) / 2. */
+typedef struct { double a, b, c, fa, fb, fc, d, e, xtol, rtol; } gw_brent;
+
+/* After f(b) is in fb: 1 when b is the root, else 0 with the next point to evaluate in b. */
+static int gw_brent_step(gw_brent *z) {
+    double tol, m, p, q, r, s;
+    if ((z->fb > 0.0) == (z->fc > 0.0)) { /* the root left [b, c]: it is in [a, b] */
+        z->c = z->a;
+        z->fc = z->fa;
+        z->d = z->e = z->b - z->a;
+    }
+    if (fabs(z->fc) < fabs(z->fb)) { /* b the best point */
+        z->a = z->b; z->b = z->c; z->c = z->a;
+        z->fa = z->fb; z->fb = z->fc; z->fc = z->fa;
+    }
+    tol = 0.5 * (z->xtol + z->rtol * fabs(z->b));
+    m = 0.5 * (z->c - z->b);
+    if (z->fb == 0.0 || fabs(m) <= tol) return 1;
+    if (fabs(z->e) >= tol && fabs(z->fa) > fabs(z->fb)) {
+        s = z->fb / z->fa;
+        if (z->a == z->c) { /* secant */
+            p = 2.0 * m * s;
+            q = 1.0 - s;
+        } else { /* inverse quadratic interpolation */
+            q = z->fa / z->fc;
+            r = z->fb / z->fc;
+            p = s * (2.0 * m * q * (q - r) - (z->b - z->a) * (r - 1.0));
+            q = (q - 1.0) * (r - 1.0) * (s - 1.0);
+        }
+        if (p > 0.0) q = -q; else p = -p;
+        if (2.0 * p < fmin(3.0 * m * q - fabs(tol * q), fabs(z->e * q))) {
+            z->e = z->d;
+            z->d = p / q;
+        } else { /* bisect */
+            z->d = m;
+            z->e = m;
+        }
+    } else {
+        z->d = m;
+        z->e = m;
+    }
+    z->a = z->b;
+    z->fa = z->fb;
+    z->b += fabs(z->d) > tol ? z->d : (m > 0.0 ? tol : -tol);
+    return 0;
+}
+
+/* The start from a bracket [a, b] with fa = f(a), fb = f(b) of different signs (or a zero). */
+static int gw_brent_start(gw_brent *z) {
+    if (z->fa == 0.0) { z->b = z->a; z->fb = 0.0; return 1; }
+    z->c = z->a;
+    z->fc = z->fa;
+    z->d = z->e = z->b - z->a;
+    return gw_brent_step(z);
+}
+
+/* numpy.linalg.solve of a small system: Gaussian elimination with partial pivoting (the method
+ * of LAPACK's dgesv, which numpy calls) of the n x n row-major a and the right-hand side b, both
+ * overwritten, b with the solution. 1 when singular as LAPACK reports it (a pivot exactly 0). */
+static int gw_solve(long n, double *a, double *b) {
+    long i, j, k, p;
+    double t;
+    for (k = 0; k < n; ++k) {
+        p = k;
+        for (i = k + 1; i < n; ++i)
+            if (fabs(a[i * n + k]) > fabs(a[p * n + k])) p = i;
+        if (a[p * n + k] == 0.0) return 1;
+        if (p != k) {
+            for (j = 0; j < n; ++j) { t = a[k * n + j]; a[k * n + j] = a[p * n + j]; a[p * n + j] = t; }
+            t = b[k]; b[k] = b[p]; b[p] = t;
+        }
+        for (i = k + 1; i < n; ++i) {
+            t = a[i * n + k] / a[k * n + k];
+            for (j = k + 1; j < n; ++j) a[i * n + j] -= t * a[k * n + j];
+            b[i] -= t * b[k];
+        }
+    }
+    for (i = n - 1; i >= 0; --i) {
+        t = b[i];
+        for (j = i + 1; j < n; ++j) t -= a[i * n + j] * b[j];
+        b[i] = t / a[i * n + i];
+    }
+    return 0;
 }
 
 #endif

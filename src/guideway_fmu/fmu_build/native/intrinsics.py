@@ -12,12 +12,15 @@ import builtins
 import math
 
 import numpy as np
+import scipy.special
+from scipy.optimize import RootResults, brentq
 
 from .translate import from_python
 from .values import (
     Array,
     Const,
     Dict,
+    Listed,
     Masked,
     Obj,
     Scalar,
@@ -41,7 +44,7 @@ _UNARY = {
     np.sign: "gw_sign", np.log10: "log10", np.cbrt: "cbrt", np.arcsin: "asin",
     np.arccos: "acos", np.sinh: "sinh", np.cosh: "cosh", np.floor: "floor", np.ceil: "ceil",
     np.degrees: "gw_degrees", np.radians: "gw_radians", math.degrees: "gw_degrees",
-    math.radians: "gw_radians",
+    math.radians: "gw_radians", scipy.special.ellipk: "gw_ellipk", scipy.special.ellipe: "gw_ellipe",
 }
 # Python function -> C function of two doubles
 _BINARY = {math.atan2: "atan2", math.hypot: "hypot", math.pow: "pow", math.copysign: "copysign",
@@ -184,8 +187,47 @@ def _reshape_method(tr, array, args, kwargs):
     return array
 
 
+def _np_extreme(is_max: bool):
+    """np.max or np.min of a 1-D array over its one axis: a NaN passes on, as numpy's does;
+    an empty array is refused in numpy's words."""
+    c_name = "gw_npmax" if is_max else "gw_npmin"
+
+    def handler(tr, args, kwargs):
+        value = args[0]
+        if len(args) > 1 or kwargs.get("axis", Const(None)).value not in (None, 0):
+            raise tr.error("np.max and np.min are translated over the one axis of a 1-D array only")
+        if isinstance(value, (Tuple, Const)):
+            value = _asarray(tr, [value], {})
+        if isinstance(value, Array):
+            items = [tr.scalar(i) for i in value.items]
+            result = items[0]
+            for item in items[1:]:
+                result = Scalar("double", f"{c_name}({result.code}, {item.code})")
+            return result
+        if not isinstance(value, Vector):
+            return value
+        tr.emit(f"if ({value.length.code} < 1) {{")
+        tr.fail([Const("zero-size array to reduction operation "
+                       f"{'maximum' if is_max else 'minimum'} which has no identity")], ValueError)
+        tr.emit("}")
+        result = tr.out.declare("double", "extreme")
+        tr.emit(f"{result} = {value.data}[0];")
+        with tr.counting(value.length) as k:
+            tr.emit(f"{result} = {c_name}({result}, {value.data}[{k}]);")
+        return Scalar("double", result)
+    return handler
+
+
+def _tolist_method(tr, array, args, kwargs):
+    if isinstance(array, Vector):
+        raise tr.error("tolist of a run-time array is not translated")
+    return Listed(list(array.items))
+
+
 #: the methods of numpy arrays the translator knows, by name
-ARRAY_METHODS = {"sum": _sum_method, "reshape": _reshape_method}
+ARRAY_METHODS = {"sum": _sum_method, "reshape": _reshape_method, "tolist": _tolist_method,
+                 "max": lambda tr, array, args, kwargs: _np_extreme(True)(tr, [array, *args], kwargs),
+                 "min": lambda tr, array, args, kwargs: _np_extreme(False)(tr, [array, *args], kwargs)}
 
 
 def _sum(tr, args, kwargs):
@@ -320,9 +362,13 @@ def _stack(tr, args, kwargs):
 
 
 def _like(fill):
+    """np.zeros_like and np.ones_like (``fill``), or np.full_like (fill None: the argument)."""
     def handler(tr, args, kwargs):
+        value = Const(fill) if fill is not None else args[1]
+        if isinstance(args[0], Vector):
+            return tr.vector_map(lambda _: value, args[0])
         shape = _shape(tr, args[0])
-        return Array([Const(fill)] * shape[0]) if shape else Const(fill)
+        return Array([value] * shape[0]) if shape else value
     return handler
 
 
@@ -421,14 +467,19 @@ def _diff(tr, args, kwargs):
 
 
 def _arange(tr, args, kwargs):
-    """np.arange(n) of a count known at run time only: a run-time array 0, 1, ... n - 1."""
-    if len(args) != 1 or kwargs or not isinstance(args[0], Scalar) or args[0].ctype != "long":
+    """np.arange([start,] stop) of whole numbers known at run time only: a run-time array start,
+    start + 1, ... stop - 1."""
+    whole = all(isinstance(a, Const) and isinstance(a.value, (int, np.integer)) or
+                isinstance(a, Scalar) and a.ctype == "long" for a in args)
+    if not 1 <= len(args) <= 2 or kwargs or not whole or _known(np.arange, args, kwargs):
         if _known(np.arange, args, kwargs):
             return _fold(np.arange, args, kwargs)
-        raise tr.error("np.arange is translated for one whole-number count only")
-    out = tr.new_vector("double", f"({args[0].code} > 0 ? {args[0].code} : 0)")
+        raise tr.error("np.arange is translated for whole-number bounds without a step only")
+    start, stop = (tr.scalar(a) for a in ([Const(0), *args] if len(args) == 1 else args))
+    count = f"({stop.code} - {start.code})"
+    out = tr.new_vector("double", f"({count} > 0 ? {count} : 0)")
     with tr.counting(out.length) as k:
-        tr.emit(f"{out.data}[{k}] = (double){k};")
+        tr.emit(f"{out.data}[{k}] = (double)({start.code} + {k});")
     return out
 
 
@@ -439,6 +490,59 @@ def _ravel(tr, args, kwargs):
     if isinstance(value, Tuple):
         return _asarray(tr, [value], {})
     return Array([value])
+
+
+def _repeat(whole: bool):
+    """np.tile (``whole``) or np.repeat of a 1-D array by a count."""
+    function = np.tile if whole else np.repeat
+
+    def handler(tr, args, kwargs):
+        if _known(function, args, kwargs):
+            return _fold(function, args, kwargs)
+        value, count = args
+        if kwargs or not (isinstance(count, (Const, Scalar)) and _shape(tr, count) == ()):
+            raise tr.error(f"np.{function.__name__} is translated for a 1-D array and a count only")
+        value = _asarray(tr, [value], {})
+        if isinstance(value, Array) and isinstance(count, Const):
+            items = value.items * count.value if whole else \
+                [item for item in value.items for _ in range(count.value)]
+            return Array(items)
+        if isinstance(value, Array):
+            value = tr.fixed_to_vector(value)
+        if not isinstance(value, Vector):
+            raise tr.error(f"np.{function.__name__} of {describe(value)} is not translated")
+        return tr.repeated(value, tr.scalar(count), whole)
+    return handler
+
+
+def _solve(tr, args, kwargs):
+    """np.linalg.solve(a, b) of an n x n matrix and an n-vector known in size (gw_solve);
+    LinAlgError("Singular matrix") as numpy raises it."""
+    a, b = (_asarray(tr, [v], {}) for v in args)
+    n = len(b.items) if isinstance(b, Array) else -1
+    if kwargs or n < 1 or not (isinstance(a, Array) and len(a.items) == n and all(
+            isinstance(row, Array) and len(row.items) == n for row in a.items)):
+        raise tr.error("np.linalg.solve is translated for an n x n matrix and an n-vector of "
+                       "known size only")
+    matrix, rhs = tr.out.declare("double", "matrix", n * n), tr.out.declare("double", "rhs", n)
+    for i, row in enumerate(a.items):
+        for j, item in enumerate(row.items):
+            tr.emit(f"{matrix}[{i * n + j}] = {tr.scalar(item).code};")
+        tr.emit(f"{rhs}[{i}] = {tr.scalar(b.items[i]).code};")
+    tr.emit(f"if (gw_solve({n}L, {matrix}, {rhs})) {{")
+    tr.fail([Const("Singular matrix")], np.linalg.LinAlgError)
+    tr.emit("}")
+    return Array([tr.variable(Scalar("double", f"{rhs}[{k}]"), tr.frame) for k in range(n)])
+
+
+def _folded(function):
+    """A numpy constructor of a shape known when the C is written (np.zeros(5), np.eye(5))."""
+    def handler(tr, args, kwargs):
+        if not _known(function, args, kwargs):
+            raise tr.error(f"np.{function.__name__} is translated for a shape known when the C "
+                           "is written only")
+        return _fold(function, args, kwargs)
+    return handler
 
 
 def _map(tr, args, kwargs):
@@ -485,6 +589,39 @@ def _where(tr, args, kwargs):
     return Scalar("double", f"({condition.code} ? (double){a.code} : (double){b.code})")
 
 
+def _brentq(tr, args, kwargs):
+    """scipy.optimize.brentq(f, a, b, xtol=, rtol=, maxiter=, full_output=, disp=False): Brent's
+    method (gw_brent_step) with f inlined where the iteration evaluates it."""
+    names = ("f", "a", "b", "args", "xtol", "rtol", "maxiter", "full_output", "disp")
+    given = {**dict(zip(names, args)), **kwargs}
+    if given.get("args", Const(())).value != () or given.get("disp", Const(True)).value:
+        raise tr.error("brentq is translated with disp=False and no extra args only")
+    f = given["f"]
+    z = tr.out.declare("gw_brent", "brent", 1)
+    for key, default in (("xtol", 2e-12), ("rtol", 4 * np.finfo(float).eps)):
+        tr.emit(f"{z}->{key} = {tr.scalar(given.get(key, Const(default))).code};")
+    for end in ("a", "b"):
+        tr.emit(f"{z}->{end} = (double){tr.scalar(given[end]).code};")
+        tr.emit(f"{z}->f{end} = {tr.scalar(tr.call(f, [Scalar('double', f'{z}->{end}')], {})).code};")
+    tr.emit(f"if ({z}->fa * {z}->fb > 0.0) {{")
+    tr.fail([Const("f(a) and f(b) must have different signs")], ValueError)
+    tr.emit("}")
+    done, count = tr.out.declare("bool", "converged"), tr.out.declare("long", "iterations")
+    tr.emit(f"{done} = gw_brent_start({z});")
+    limit = tr.scalar(given.get("maxiter", Const(100))).code
+    tr.emit(f"for ({count} = 0; !{done} && {count} < {limit}; ++{count}) {{")
+    tr.out.depth += 1
+    tr.emit(f"{z}->fb = {tr.scalar(tr.call(f, [Scalar('double', f'{z}->b')], {})).code};")
+    tr.emit(f"{done} = gw_brent_step({z});")
+    tr.out.depth -= 1
+    tr.emit("}")
+    root = Scalar("double", f"{z}->b")
+    if not given.get("full_output", Const(False)).value:
+        return root
+    return Tuple([root, Obj(RootResults, {"root": root, "converged": Scalar("bool", done),
+                                          "iterations": Scalar("long", count)})])
+
+
 _ADD = ast.Add()  # the operator _sum adds with
 #: numpy's functions, which act element by element on an array
 _ELEMENTWISE = {f for f in [*_UNARY, *_BINARY, *_TESTS, np.float64, np.clip]
@@ -496,7 +633,7 @@ def table() -> dict:
     handlers = {}
     for function, c_name in _UNARY.items():
         handlers[function] = _numeric(function, _math_unary(function, c_name)
-                                      if function.__module__ == "math" and function not in (
+                                      if getattr(function, "__module__", None) == "math" and function not in (
                                           math.fabs, math.degrees, math.radians)
                                       else _unary(c_name))
     for function, c_name in _BINARY.items():
@@ -511,7 +648,7 @@ def table() -> dict:
         builtins.int: _numeric(int, _int), builtins.abs: _numeric(abs, _abs),
         builtins.max: _numeric(max, _extreme("gw_pymax", "gw_pymaxl")),
         builtins.min: _numeric(min, _extreme("gw_pymin", "gw_pyminl")),
-        builtins.sum: _sum, np.sum: _np_sum,
+        builtins.sum: _sum, np.sum: _np_sum, np.max: _np_extreme(True), np.min: _np_extreme(False),
         np.asarray: _asarray, np.array: _asarray,
         np.all: _reduce_all(True), builtins.all: _reduce_all(True),
         np.any: _reduce_all(False), builtins.any: _reduce_all(False),
@@ -519,8 +656,9 @@ def table() -> dict:
         builtins.len: _len, builtins.zip: _zip, builtins.enumerate: _enumerate,
         builtins.range: _range, builtins.bool: _bool, builtins.dict: _dict, builtins.map: _map, np.where: _where,
         np.broadcast_to: _broadcast_to, np.broadcast_arrays: _broadcast_arrays, np.stack: _stack,
-        np.zeros_like: _like(0.0), np.ones_like: _like(1.0), np.ravel: _ravel, np.arange: _arange,
-        np.divide: _divide,
+        np.zeros_like: _like(0.0), np.ones_like: _like(1.0), np.full_like: _like(None),
+        np.zeros: _folded(np.zeros), np.ones: _folded(np.ones), np.eye: _folded(np.eye), np.linalg.solve: _solve, np.ravel: _ravel, np.arange: _arange,
+        np.divide: _divide, brentq: _brentq, np.repeat: _repeat(False), np.tile: _repeat(True),
         np.clip: _numeric(np.clip, _clip), object.__setattr__: _setattr,
     })
     return handlers

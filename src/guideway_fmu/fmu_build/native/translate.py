@@ -89,10 +89,12 @@ class Emitter:
         return f"{''.join(c if c.isalnum() else '_' for c in hint)[:24]}_{self.counter}"
 
     def declare(self, ctype: str, hint: str, length: int | None = None) -> str:
-        """A new local C variable (an array of ``length`` where given), zero at the start."""
+        """A new local C variable, zero at the start, or an array of ``length`` (not cleared:
+        every array is written before it is read, and clearing the run-time arrays' capacity
+        at every call would cost more than the physics)."""
         name = self.fresh(hint)
         self.declarations.append(f"    {ctype} {name} = 0;" if length is None else
-                                 f"    {ctype} {name}[{length}] = {{0}};")
+                                 f"    {ctype} {name}[{length}];")
         return name
 
     def capture(self) -> list[str]:
@@ -210,6 +212,10 @@ class TranslatorCore:
             return self.variable(self.scalar(value), owner)
         if isinstance(value, Tuple):
             return type(value)([self.variable(v, owner) for v in value.items])
+        if isinstance(value, Vector):  # a copy: a later assignment must not write the original
+            copy = self.new_vector(value.ctype, value.length.code)
+            self.store_vector(copy, value)
+            return copy
         if isinstance(value, Dict):
             return Dict({k: self.variable(v, owner) for k, v in value.items.items()})
         if isinstance(value, Obj) and owner is not None and not isinstance(owner, Obj):
@@ -335,7 +341,7 @@ class TranslatorCore:
         if isinstance(value, Text) and name == "split":
             from .intrinsics import split
             return Const(_Bound(split, value))
-        if isinstance(value, (Vector, Array)) and name in ("sum", "reshape"):
+        if isinstance(value, (Vector, Array)) and name in ("sum", "reshape", "max", "min", "tolist"):
             from .intrinsics import ARRAY_METHODS
             return Const(_Bound(ARRAY_METHODS[name], value))
         if isinstance(value, Vector) and name in ("shape", "ndim", "size"):

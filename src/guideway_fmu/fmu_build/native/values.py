@@ -41,6 +41,10 @@ class Array(Tuple):
     functions act element by element, broadcasting a number."""
 
 
+class Listed(Tuple):
+    """``array.tolist()``: numbers that a message writes as a list, [a, b]."""
+
+
 @dataclass
 class Obj:
     """An instance of ``cls`` with its attributes by name (its ``__dict__``)."""

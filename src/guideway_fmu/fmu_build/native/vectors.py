@@ -133,6 +133,15 @@ class Vectors:
         with self.counting(value.length) as k:
             self.emit(f"{target.data}[{k}] = {value.data}[{k}];")
 
+    def repeated(self, vector: Vector, count: Scalar, whole: bool) -> Vector:
+        """np.tile(vector, count) (``whole``) or np.repeat(vector, count) as a run-time array."""
+        n = vector.length.code
+        out = self.new_vector(vector.ctype, f"({count.code} > 0 ? {n} * {count.code} : 0)")
+        with self.counting(out.length) as k:
+            source = f"{k} % {n}" if whole else f"{k} / {count.code}"
+            self.emit(f"{out.data}[{k}] = {vector.data}[{source}];")
+        return out
+
     def fixed_to_vector(self, array: Array) -> Vector:
         out = self.new_vector("double", f"{len(array.items)}L")
         for k, item in enumerate(array.items):

@@ -50,8 +50,8 @@ SLIDER_X, SLIDER_Y = np.array(SLIDER_SIGNS, dtype=float).T
 ROW_Y, ROW_Z = np.array(ROW_SIGNS, dtype=float).T
 #: static contact-pressure limit of ball bearings behind ISO 76's basic static load rating [Pa]
 PRESSURE_LIMIT = 4.2e9
-#: load steps tried, each 4 times finer than the last, when the direct solve does not converge
-CONTINUATION_STEPS = (4, 16, 64)
+#: where the direct solve does not converge, the load is applied in 4, then 16, then 64 steps
+FINEST_CONTINUATION = 64
 #: Newton iterations of one solve at most (from a near start it converges in 2-4)
 NEWTON_ITERATIONS = 50
 
@@ -152,11 +152,13 @@ class FeedUnit:
         (self.x, self.y, self.z), (self.c_y, self.c_z), self.slider = layout.balls()
 
     def contact(self, q):
-        """(approach [m], unit normal (n_y, n_z), centre distance |v| [m] or None at a constant
-        angle) of every ball at q."""
+        """(approach [m], unit normal (n_y, n_z), centre distance |v| [m]) of every ball at q;
+        at a constant angle the distance is inf: the contact line keeps its direction, as if
+        the grooves' centres lay infinitely far apart."""
         _, d_y, d_z = displacement(q, self.x, self.y, self.z)
         if not self.angle_change:
-            return self.rest + self.c_y * d_y + self.c_z * d_z, (self.c_y, self.c_z), None
+            approach = self.rest + self.c_y * d_y + self.c_z * d_z
+            return approach, (self.c_y, self.c_z), np.full_like(approach, np.inf)
         v_y, v_z = self.distance * self.c_y + d_y, self.distance * self.c_z + d_z
         length = np.hypot(v_y, v_z)
         return self.rest + length - self.distance, (v_y / length, v_z / length), length
@@ -175,11 +177,11 @@ class FeedUnit:
 
     def ball_tangents(self, q) -> tuple:
         """(t_yy, t_yz, t_zz): each ball's stiffness against its slider's (d_y, d_z) [N/m],
-        k n n^T, plus the turning of the contact line (Q / |v|)(I - n n^T) with the angle
-        change."""
+        k n n^T plus the turning of the contact line (Q / |v|)(I - n n^T) (0 at a constant
+        angle)."""
         approach, (n_y, n_z), length = self.contact(q)
         k = hertz_point.stiffness(self.k_h, approach)
-        turn = 0.0 if length is None else hertz_point.load(self.k_h, approach) / length
+        turn = hertz_point.load(self.k_h, approach) / length
         return (k * n_y**2 + turn * (1.0 - n_y**2), (k - turn) * n_y * n_z,
                 k * n_z**2 + turn * (1.0 - n_z**2))
 
@@ -203,9 +205,9 @@ class FeedUnit:
         load = checks.finite("load", load)
         tolerance = 1e-9 * max(float(np.max(np.abs(load))), self.preload)
         q, error = self._solve(load, np.zeros(5) if start is None else start, tolerance)
-        for steps in CONTINUATION_STEPS:
-            if error <= tolerance:
-                break
+        steps = 1
+        while not error <= tolerance and steps < FINEST_CONTINUATION:
+            steps *= 4
             q = np.zeros(5)
             for step in range(1, steps + 1):
                 q, error = self._solve(step / steps * load, q, tolerance)
