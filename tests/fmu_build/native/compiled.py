@@ -21,15 +21,17 @@ def c_text(function, arity: int) -> str:
     tr = Translator(table())
     value = tr.call(func_of(function), [Scalar("double", f"args[{i}]") for i in range(arity)], {})
     tr.emit(f"*out = {tr.scalar(value).code};")
-    body = "\n".join(tr.out.declarations + tr.out.lines)
+    body = tr.out.body()
     return ('#include "gw_runtime.h"\n'
             "int entry(gw_ctx *ctx, const double *args, double *out) {\n"
             f"{body}\n    return 0;\n    goto gw_fail;\ngw_fail:\n    return 1;\n}}\n"
-            "void repr(double x, char *out) { gw_repr(out, 40, x); }\n")
+            "void repr(double x, char *out) { gw_repr(out, 40, x); }\n"
+            "void release(gw_ctx *ctx) { free(ctx->scratch); }\n")
 
 
 class _Context(ctypes.Structure):
-    _fields_ = [("message", ctypes.c_char * 1024), ("length", ctypes.c_size_t)]
+    _fields_ = [("message", ctypes.c_char * 1024), ("length", ctypes.c_size_t),
+                ("scratch", ctypes.c_void_p), ("scratch_size", ctypes.c_size_t)]
 
 
 def compiled(function, arity: int):
@@ -48,7 +50,9 @@ def compiled(function, arity: int):
 
     def call(*args):
         context, out = _Context(), ctypes.c_double()
-        if entry(ctypes.byref(context), (ctypes.c_double * arity)(*args), ctypes.byref(out)):
+        failed = entry(ctypes.byref(context), (ctypes.c_double * arity)(*args), ctypes.byref(out))
+        library.release(ctypes.byref(context))
+        if failed:
             raise ValueError(context.message.decode())
         return out.value
 

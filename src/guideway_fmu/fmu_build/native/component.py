@@ -222,7 +222,7 @@ class Unit:
             self._store_outputs(tr, value)
         arguments = "".join(f", double {p}" for p in parameters)
         arguments += ", double *out" if method == "evaluate" else ""
-        body = "\n".join(tr.out.declarations + tr.out.lines)
+        body = tr.out.body()
         return (f"static int {name}(gw_ctx *ctx, gw_self *s{arguments}) {{\n"
                 f"    (void)ctx; (void)s;{''.join(f' (void){p};' for p in parameters)}\n"
                 f"{body}\n    return 0;\n    goto gw_fail;\ngw_fail:\n    return 1;\n}}\n")

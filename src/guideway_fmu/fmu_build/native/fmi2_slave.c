@@ -325,6 +325,7 @@ fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
 void fmi2FreeInstance(fmi2Component component) {
     gw_instance *c = (gw_instance *)component;
     if (!c) return;
+    free(c->ctx.scratch);
     free(c->instance_name);
     free(c);
 }

@@ -16,7 +16,22 @@
 typedef struct {
     char message[GW_MESSAGE_SIZE]; /* why the last translated call failed */
     size_t length;
+    double *scratch; /* the run-time arrays of the translated functions (gw_scratch) */
+    size_t scratch_size;
 } gw_ctx;
+
+/* ``n`` doubles on the heap for a translated function's run-time arrays, kept by the context
+ * (one per instance) and grown to the largest need: a function of many arrays would otherwise
+ * need more stack than a host's thread may have (1 MB on Windows). NULL when out of memory. */
+static double *gw_scratch(gw_ctx *ctx, size_t n) {
+    if (n > ctx->scratch_size) {
+        double *grown = (double *)realloc(ctx->scratch, n * sizeof(double));
+        if (!grown) return NULL;
+        ctx->scratch = grown;
+        ctx->scratch_size = n;
+    }
+    return ctx->scratch;
+}
 
 static void gw_msg_clear(gw_ctx *ctx) { ctx->length = 0; ctx->message[0] = '\0'; }
 

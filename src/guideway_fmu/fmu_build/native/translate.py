@@ -23,6 +23,7 @@ import types
 
 import numpy as np
 
+from .vectors import CAPACITY
 from .source import TranslationError, definition, returns
 from .values import (
     Array,
@@ -80,6 +81,7 @@ class Emitter:
         self.declarations: list[str] = []
         self.depth = 1
         self.counter = 0
+        self.vectors = 0  # run-time arrays declared
 
     def emit(self, line: str) -> None:
         self.lines.append("    " * self.depth + line)
@@ -90,12 +92,27 @@ class Emitter:
 
     def declare(self, ctype: str, hint: str, length: int | None = None) -> str:
         """A new local C variable, zero at the start, or an array of ``length`` (not cleared:
-        every array is written before it is read, and clearing the run-time arrays' capacity
-        at every call would cost more than the physics)."""
+        every array is written before it is read)."""
         name = self.fresh(hint)
         self.declarations.append(f"    {ctype} {name} = 0;" if length is None else
                                  f"    {ctype} {name}[{length}];")
         return name
+
+    def vector(self, hint: str) -> str:
+        """A new run-time array of vectors.CAPACITY doubles (not cleared), in the context's
+        scratch on the heap (gw_scratch), not on the stack."""
+        name = self.fresh(hint)
+        self.declarations.append(f"    double *{name} = gw_vectors + {self.vectors * CAPACITY};")
+        self.vectors += 1
+        return name
+
+    def body(self) -> str:
+        """The function's declarations and lines, with its run-time arrays' scratch first."""
+        head = [] if not self.vectors else [
+            f"    double *gw_vectors = gw_scratch(ctx, {self.vectors * CAPACITY});",
+            '    if (!gw_vectors) { gw_msg_clear(ctx); gw_msg_text(ctx, "no memory for the '
+            'run-time arrays"); goto gw_fail; }']
+        return "\n".join(head + self.declarations + self.lines)
 
     def capture(self) -> list[str]:
         """Start writing into a new list of lines; returns the previous one (for :meth:`restore`)."""

@@ -24,7 +24,7 @@ class Vectors:
     def new_vector(self, ctype: str, length: str) -> Vector:
         """A fresh local array of ``ctype`` numbers (kept as doubles) and ``length`` (a C
         expression; more than CAPACITY is refused)."""
-        data = self.out.declare("double", "array", CAPACITY)
+        data = self.out.vector("array")
         n = self.out.declare("long", "length")
         self.emit(f"{n} = {length};")
         self.emit(f"if ({n} > {CAPACITY}L) {{")
