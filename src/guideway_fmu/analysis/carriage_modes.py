@@ -114,7 +114,7 @@ def analyse(case: CarriageCase) -> dict:
             raise ValueError(f"{case.path}: [load]: {error}") from None
         k = balls.ball_stiffness(q)
     found = bc.modes(bc.stiffness_matrix(directions, k), case.body.mass_matrix())
-    approach = directions @ found.shapes  # ball approach (row) in each mode shape (column)
+    approach = np.column_stack(directions) @ found.shapes  # ball approach (row) in each mode (column)
     approach = np.where(found.frequencies > 0.0,
                         approach / np.max(np.abs(approach), axis=0, initial=1e-300), 0.0)
     rows = [{"frequency_hz": float(f), "label": found.label(i),

@@ -51,3 +51,18 @@ def newton_system(residual, jacobian, start, tolerance: float, iterations: int):
         r = residual(x)
         error = float(np.max(np.abs(r)))
     return x, error
+
+
+def load_steps(solve, load, start, tolerance: float, finest: int):
+    """(x, error) of ``solve(load, start)`` (a solve that returns (x, error), such as
+    :func:`newton_system` bound to a residual of the load); where the error misses the tolerance,
+    the load is applied again from x = 0 in 4, then 16, ... up to ``finest`` equal steps, each
+    solved from the last step's answer."""
+    x, error = solve(load, start)
+    steps = 1
+    while not error <= tolerance and steps < finest:
+        steps *= 4
+        x = np.zeros_like(start)
+        for step in range(1, steps + 1):
+            x, error = solve(step / steps * load, x)
+    return x, error

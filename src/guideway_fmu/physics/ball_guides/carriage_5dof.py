@@ -10,8 +10,9 @@ row sits at l_i along x. The approach of ball i grows with the carriage's motion
     delta_1i = (u - d phi + l_i psi) cos beta + (-v - e phi + l_i theta) sin beta
     delta_2i = -(u - d phi + l_i psi) cos beta + (-v + e phi + l_i theta) sin beta
 
-i.e. delta = g . q with one row g of :func:`contact_directions` per ball. With normal ball
-stiffnesses k the stiffness matrix is K = sum k g g^T, whose entries are the paper's c_21..c_29
+i.e. delta = G q, whose five columns G_j (arrays over the balls) :func:`contact_directions`
+gives. With normal ball stiffnesses k the stiffness matrix is K_ab = sum k G_a G_b (over the
+balls), whose entries are the paper's c_21..c_29
 (eqs. 14, 22, A12, A20), and the free vibration solves K phi = omega^2 M phi with
 M = diag(m, m, J_x, J_y, J_z) (eqs. A5-A9, here as one generalized eigenproblem). The
 u-phi-psi block of two rows is singular: the lateral shift with the roll about the rows'
@@ -19,8 +20,8 @@ contact lines' crossing point stretches no ball (omega_20 = 0, eq. A13), a rigid
 
 :class:`HertzBalls` computes the stiffnesses the paper lists in its Table 2: every ball carries
 the preload Q_0 at rest (approach delta_0 = (Q_0 / K_h)^(2/3)); under the external load
-F = (F_y, F_z, M_x, M_y, M_z) the carriage settles where sum (Q_i - Q_0) g_i = F with
-Q_i = K_h max(delta_0 + g_i . q, 0)^1.5 (the preload is reacted inside the guide), and each
+F = (F_y, F_z, M_x, M_y, M_z) the carriage settles where G^T (Q - Q_0) = F with
+Q = K_h max(delta_0 + G q, 0)^1.5 (the preload is reacted inside the guide), and each
 ball's tangent stiffness is 1.5 K_h delta_i^0.5 (eq. 8). A ball whose approach falls to 0 has
 lost contact: it carries and stiffens nothing.
 
@@ -35,17 +36,19 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import eigh
-from scipy.optimize import root
 
 from .. import checks
 from . import hertz_point
 from ..dynamics import ContinuousModel
+from ..roots import load_steps, newton_system
 
 DOF = ("u", "v", "phi", "theta", "psi")
 LOADS = ("F_y", "F_z", "M_x", "M_y", "M_z")  # generalized forces conjugate to DOF [N, N m]
 #: mode names of the dominant coordinates (Wu et al. 2012, Fig. 3): u and phi make rolling
 MOTION = {"u": "rolling", "phi": "rolling", "v": "vertical", "theta": "pitching", "psi": "yawing"}
 LABEL_SHARE = 0.1  # a coordinate names a mode when it holds this share of its kinetic energy
+#: Newton iterations of one equilibrium solve at most, and the finest load steps tried after
+NEWTON_ITERATIONS, FINEST_LOAD_STEPS = 50, 64
 
 
 @dataclass(frozen=True)
@@ -85,21 +88,70 @@ def ball_positions(per_row: int, pitch: float, shift: float = 0.0) -> np.ndarray
     return (centred + shift + zone / 2.0) % zone - zone / 2.0
 
 
-def contact_directions(body: CarriageBody, positions) -> np.ndarray:
-    """(2 n, 5) matrix G whose row g gives a ball's approach g . q (eq. A3): row 1, then row 2."""
+def contact_directions(body: CarriageBody, positions) -> tuple:
+    """G's five columns (DOF order), each an array over the balls, row 1 then row 2: a ball's
+    approach grows by sum_j G_j q_j (eq. A3)."""
     l = np.asarray(positions, dtype=float)
     c, s = np.cos(body.contact_angle), np.sin(body.contact_angle)
     arm = body.d * c + body.e * s
     one = np.ones_like(l)
-    left = np.column_stack([c * one, -s * one, -arm * one, l * s, l * c])
-    right = np.column_stack([-c * one, -s * one, arm * one, l * s, -l * c])
-    return np.vstack([left, right])
+    return (np.concatenate([c * one, -c * one]), np.concatenate([-s * one, -s * one]),
+            np.concatenate([-arm * one, arm * one]), np.concatenate([l * s, l * s]),
+            np.concatenate([l * c, -l * c]))
 
 
-def stiffness_matrix(directions: np.ndarray, ball_stiffness) -> np.ndarray:
-    """K = sum k g g^T [N/m, N, N m] from each ball's normal stiffness k [N/m]."""
+def approach_change(directions, q):
+    """G q [m]: each ball's change of approach at the displacement q."""
+    return sum([g * x for g, x in zip(directions, q)])
+
+
+def generalized(directions, ball_forces) -> np.ndarray:
+    """G^T f [N, N m]: the generalized force of forces f [N] along the balls' approach."""
+    return np.array([np.sum(g * ball_forces) for g in directions])
+
+
+def stiffness_matrix(directions, ball_stiffness) -> np.ndarray:
+    """K = G^T diag(k) G [N/m, N, N m] from each ball's normal stiffness k [N/m]."""
     k = np.asarray(ball_stiffness, dtype=float)
-    return directions.T @ (k[:, None] * directions)
+    return np.array([[np.sum(k * a * b) for b in directions] for a in directions])
+
+
+def rigid_direction(body: CarriageBody) -> np.ndarray:
+    """The unit displacement that stretches no ball of either row: the lateral shift with the
+    roll about the crossing point of the rows' contact lines (omega_20 = 0, eq. A13)."""
+    c, s = np.cos(body.contact_angle), np.sin(body.contact_angle)
+    arm = body.d * c + body.e * s
+    return np.array([arm, 0.0, c, 0.0, 0.0]) / np.hypot(arm, c)
+
+
+def balanced(body: CarriageBody, directions, loads, stiffness, rest: float, external) -> np.ndarray:
+    """q where balls of normal load ``loads(q)`` [N] (``rest`` at q = 0) and tangent stiffness
+    ``stiffness(q)`` [N/m] along ``directions`` balance ``external`` (F_y, F_z, M_x, M_y, M_z):
+    Newton's method from the unloaded carriage, in load steps where it does not converge, to
+    1e-9 of the load or the rest load. The rigid direction (no ball resists it) is held at 0:
+    a stiffness along it in the Jacobian keeps every step off it. ValueError if the load drives
+    that direction, or if the balls cannot carry it."""
+    f = checks.finite("load", external)
+    if not np.all(stiffness(np.zeros(5)) > 0.0):
+        raise ValueError("preload must be > 0 for the start in static equilibrium (unpreloaded "
+                         "balls have no stiffness at rest)")
+    rigid = rigid_direction(body)
+    scale = max(float(np.max(np.abs(f))), rest)
+    if abs(float(np.sum(rigid * f))) > 1e-9 * scale:
+        raise ValueError(f"the load {f.tolist()} (F_y, F_z, M_x, M_y, M_z) drives the motion "
+                         f"no ball resists (lateral shift with roll); balance it")
+    hold = np.trace(stiffness_matrix(directions, stiffness(np.zeros(5)))) * np.outer(rigid, rigid)
+
+    def solve(load, start):
+        return newton_system(lambda q: load - generalized(directions, loads(q) - rest),
+                             lambda q: -stiffness_matrix(directions, stiffness(q)) - hold,
+                             start, 1e-9 * scale, NEWTON_ITERATIONS)
+
+    q, error = load_steps(solve, f, np.zeros(5), 1e-9 * scale, FINEST_LOAD_STEPS)
+    if not error <= 1e-9 * scale:  # NaN: not converged either
+        raise ValueError(f"no static equilibrium under the load {f.tolist()} (F_y, F_z, M_x, "
+                         f"M_y, M_z): more than the balls can carry")
+    return q
 
 
 @dataclass(frozen=True)
@@ -165,7 +217,7 @@ class HertzBalls:
 
     def approaches(self, q) -> np.ndarray:
         """delta_i [m] of every ball (row 1, then row 2) at the displacement q."""
-        return self.rest + self.directions @ np.asarray(q, dtype=float)
+        return self.rest + approach_change(self.directions, np.asarray(q, dtype=float))
 
     def loads(self, q) -> np.ndarray:
         """Q_i [N] of every ball."""
@@ -176,44 +228,17 @@ class HertzBalls:
         return hertz_point.stiffness(self.k_h, self.approaches(q))
 
     def restoring(self, q) -> np.ndarray:
-        """Generalized force of the balls on the carriage, -sum (Q_i - Q_0) g_i."""
-        return -self.directions.T @ (self.loads(q) - self.preload)
+        """Generalized force of the balls on the carriage, -G^T (Q - Q_0)."""
+        return -generalized(self.directions, self.loads(q) - self.preload)
 
     def tangent(self, q) -> np.ndarray:
-        """Tangent stiffness matrix sum k_i g_i g_i^T at q."""
+        """Tangent stiffness matrix G^T diag(k) G at q."""
         return stiffness_matrix(self.directions, self.ball_stiffness(q))
 
     def equilibrium(self, external) -> np.ndarray:
-        """q where the balls balance ``external`` (F_y, F_z, M_x, M_y, M_z). The rigid-body
-        direction of two rows (no ball resists it) is held at 0: the displacement is sought in
-        the complement of the unloaded K's null space. ValueError if the load drives that
-        direction, or if the balls cannot carry it."""
-        f = checks.finite("load", external)
-        if self.preload == 0.0:
-            raise ValueError("preload must be > 0 for the start in static equilibrium (unpreloaded "
-                             "balls have no stiffness at rest)")
-        values, vectors = np.linalg.eigh(self.tangent(np.zeros(5)))
-        free = values > 1e-9 * values.max()
-        basis, rigid = vectors[:, free], vectors[:, ~free]
-        scale = max(float(np.abs(f).max()), self.preload)
-        if np.any(np.abs(rigid.T @ f) > 1e-9 * scale):
-            raise ValueError(f"the load {f.tolist()} (F_y, F_z, M_x, M_y, M_z) drives the motion "
-                             f"no ball resists (lateral shift with roll); balance it")
-
-        def residual(z):
-            return basis.T @ (self.restoring(basis @ z) + f)
-
-        def jacobian(z):
-            return -basis.T @ self.tangent(basis @ z) @ basis
-
-        rest = -jacobian(np.zeros(basis.shape[1]))
-        start = np.linalg.solve(rest, basis.T @ f)  # the linear answer
-        found = root(residual, start, jac=jacobian, method="hybr")
-        # judged by the residual: at round-off hybr may report slow progress on a solution
-        if not np.max(np.abs(residual(found.x))) <= 1e-9 * scale:  # NaN: not converged either
-            raise ValueError(f"no static equilibrium under the load {f.tolist()} (F_y, F_z, M_x, "
-                             f"M_y, M_z): more than the balls can carry")
-        return basis @ found.x
+        """q where the balls balance ``external`` (F_y, F_z, M_x, M_y, M_z) (:func:`balanced`)."""
+        return balanced(self.body, self.directions, self.loads, self.ball_stiffness,
+                        self.preload, external)
 
 
 class BallCarriageModel(ContinuousModel):
@@ -223,46 +248,45 @@ class BallCarriageModel(ContinuousModel):
     takes it away).
 
     M d2q/dt2 = F + F_0 + R(q, s) - C(q, s) dq/dt, with F_0 the ``static_load`` (LOADS order),
-    R the balls' restoring force and C = sum c g g^T over the balls in contact (``ball_damping``
-    c [N s/m] per ball). With ``k_h`` (Hertz balls) the springs are nonlinear Hertz balls that
-    may lose contact; with ``ball_stiffness`` (one value per ball of a row, used for both rows)
-    they are linear and the preload plays no part.
-    Outputs: q, dq/dt and each row's total normal ball load (with linear springs, its change
-    from rest) [N]."""
+    R the balls' restoring force and C = G^T diag(c) G over the balls in contact
+    (``ball_damping`` c [N s/m] per ball). The springs are nonlinear Hertz balls of constant
+    ``k_h`` that may lose contact, or, where ``ball_stiffness`` gives one value per ball of a
+    row (used for both rows), linear springs, always in contact, for which the preload plays no
+    part. Outputs: q, dq/dt and each row's total normal ball load (with linear springs, its
+    change from rest) [N]."""
 
     inputs = LOADS + ("u_feed", "preload")
     states = (*DOF, *(f"{n}_dot" for n in DOF), "ball_shift")
 
     def __init__(self, body: CarriageBody, per_row: int, pitch: float, *, k_h=None,
-                 ball_stiffness=None, ball_damping: float = 0.0, static_load=(0.0,) * 5):
+                 ball_stiffness=(), ball_damping: float = 0.0, static_load=(0.0,) * 5):
         self.body, self.per_row, self.pitch = body, per_row, pitch
         self.static_load = np.asarray(checks.finite("static_load", static_load), dtype=float)
         ball_positions(per_row, pitch)  # checks per_row and pitch
-        if (ball_stiffness is None) == (k_h is None):
-            raise ValueError("give either ball_stiffness or the Hertz constant")
-        if ball_stiffness is not None:
-            k = checks.positive("ball_stiffness", np.asarray(ball_stiffness, dtype=float))
-            if k.shape != (per_row,):
+        k = np.asarray(ball_stiffness, dtype=float)
+        if k.size:
+            checks.positive("ball_stiffness", k)
+            if k.size != per_row:
                 raise ValueError(f"ball_stiffness needs {per_row} values (per_row), got {k.size}")
-            self.linear = np.concatenate([k, k])
-        else:
-            self.linear = None
-            self.k_h = checks.positive("k_h", k_h)
+        elif k_h is None:
+            raise ValueError("give either ball_stiffness or the Hertz constant")
+        self.linear = np.concatenate([k, k])  # empty: Hertz balls
+        self.k_h = 0.0 if k_h is None else checks.positive("k_h", k_h)
         self.damping = checks.non_negative("ball_damping", ball_damping)
         self.mass = np.diag(body.mass_matrix())
 
     def balls(self, shift: float, preload: float):
         """(directions, loads(q), stiffness(q)) of the balls at the shift [m] and preload [N]."""
         positions = ball_positions(self.per_row, self.pitch, shift)
-        if self.linear is not None:
+        if self.linear.size:
             g = contact_directions(self.body, positions)
-            return g, lambda q: self.linear * (g @ q), lambda q: self.linear
+            return g, lambda q: self.linear * approach_change(g, q), lambda q: self.linear
         hertz = HertzBalls(self.body, positions, self.k_h, preload)
         return hertz.directions, hertz.loads, hertz.ball_stiffness
 
     def rest_loads(self, preload: float) -> float:
         """Q_0 [N] of a ball at rest (0 with linear springs)."""
-        return 0.0 if self.linear is not None else preload
+        return 0.0 if self.linear.size else preload
 
     def state_scales(self):
         return (1e-6,) * 5 + (1e-3,) * 5 + (self.pitch,)
@@ -273,22 +297,19 @@ class BallCarriageModel(ContinuousModel):
 
     def initial_state(self, t, inputs):
         """Static equilibrium under the load at t, at rest, balls unshifted."""
-        load = self.load(inputs)
-        if self.linear is not None:
-            k = stiffness_matrix(self.balls(0.0, 0.0)[0], self.linear)
-            q = np.linalg.lstsq(k, load, rcond=None)[0]
-        else:
-            q = HertzBalls(self.body, ball_positions(self.per_row, self.pitch), self.k_h,
-                           inputs["preload"]).equilibrium(load)
+        g, loads, stiffness = self.balls(0.0, inputs["preload"])
+        q = balanced(self.body, g, loads, stiffness, self.rest_loads(inputs["preload"]),
+                     self.load(inputs))
         return (*q, *np.zeros(5), 0.0)
 
     def derivatives(self, t, state, inputs):
         y = np.asarray(state, dtype=float)
         q, rate = y[:5], y[5:10]
-        g, loads, stiffness = self.balls(y[10], inputs["preload"])
-        in_contact = (loads(q) > 0.0) if self.linear is None else np.ones(g.shape[0], bool)
-        restoring = -g.T @ (loads(q) - self.rest_loads(inputs["preload"]))
-        damping = self.damping * g.T @ (in_contact * (g @ rate))
+        g, loads, _ = self.balls(y[10], inputs["preload"])
+        forces = loads(q)
+        in_contact = np.where(self.linear.size > 0, True, forces > 0.0)  # linear: always
+        restoring = -generalized(g, forces - self.rest_loads(inputs["preload"]))
+        damping = self.damping * generalized(g, in_contact * approach_change(g, rate))
         acceleration = (self.load(inputs) + restoring - damping) / self.mass
         return (*rate, *acceleration, 0.5 * inputs["u_feed"])
 
@@ -306,27 +327,24 @@ class BallCarriageModel(ContinuousModel):
         integrator's substeps: the balls stiffen under load and as the preload rises)."""
         y = np.asarray(state, dtype=float)
         g, _, stiffness = self.balls(y[10], preload)
-        k = stiffness_matrix(g, stiffness(y[:5]))
-        return float(modes(k, np.diag(self.mass)).frequencies.max())
+        values = eigh(stiffness_matrix(g, stiffness(y[:5])), np.diag(self.mass), eigvals_only=True)
+        return float(np.sqrt(max(values[-1], 0.0)) / (2 * np.pi))
 
 
 def from_parameters(mass, inertia_x, inertia_y, inertia_z, contact_angle, d, e, balls_per_row,
                     pitch, ball_diameter, conformity, ball_stiffness, ball_damping,
                     static_F_y, static_F_z, static_M_x, static_M_y, static_M_z) -> BallCarriageModel:
     """The validated model of the BallCarriage5DOF FMU's parameters (fmus/README.md):
-    ``ball_stiffness`` a space-separated list of per-row values [N/m], or empty for the Hertz
-    balls of ``ball_diameter`` and ``conformity`` (their preload is an input); the static_* loads
-    are added to the load inputs."""
+    ``ball_stiffness`` a space-separated list of per-row values [N/m] for linear springs, or
+    empty for the Hertz balls of ``ball_diameter`` and ``conformity`` (their preload is an
+    input); the static_* loads are added to the load inputs."""
     body = CarriageBody(mass, (inertia_x, inertia_y, inertia_z), contact_angle, d, e)
     static = (static_F_y, static_F_z, static_M_x, static_M_y, static_M_z)
-    if str(ball_stiffness).strip():
-        try:
-            values = [float(v) for v in str(ball_stiffness).split()]
-        except ValueError:
-            raise ValueError(f"ball_stiffness must be numbers separated by spaces, got "
-                             f"{ball_stiffness!r}") from None
-        return BallCarriageModel(body, balls_per_row, pitch, ball_stiffness=values,
-                                 ball_damping=ball_damping, static_load=static)
+    try:
+        values = [float(v) for v in str(ball_stiffness).split()]
+    except ValueError:
+        raise ValueError(f"ball_stiffness must be numbers separated by spaces, got "
+                         f"{ball_stiffness!r}") from None
     k_h = hertz_point.ball_constant(hertz_point.BallGroove(ball_diameter, conformity))
-    return BallCarriageModel(body, balls_per_row, pitch, k_h=k_h, ball_damping=ball_damping,
-                             static_load=static)
+    return BallCarriageModel(body, balls_per_row, pitch, k_h=k_h, ball_stiffness=values,
+                             ball_damping=ball_damping, static_load=static)

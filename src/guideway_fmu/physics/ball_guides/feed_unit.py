@@ -41,7 +41,7 @@ from .. import checks
 from . import hertz_point
 from .carriage_5dof import ball_positions
 from ..dynamics import ContinuousModel
-from ..roots import newton_system
+from ..roots import load_steps, newton_system
 
 ERRORS = ("delta_y", "delta_z", "epsilon_x", "epsilon_y", "epsilon_z")
 SLIDER_SIGNS = ((1, 1), (1, -1), (-1, -1), (-1, 1))  # (x, y) sides of sliders 1..4
@@ -194,23 +194,19 @@ class FeedUnit:
         return np.array([[np.sum(g_y * p_y + g_z * p_z) for p_y, p_z in pushed]
                          for g_y, g_z in columns])
 
-    def _solve(self, load, start, tolerance):
-        return newton_system(lambda q: self.restoring(q) + load, lambda q: -self.tangent(q),
-                             start, tolerance, NEWTON_ITERATIONS)
-
     def equilibrium(self, load, start=None) -> Equilibrium:
         """The table's rest under the generalized load (F_y, F_z, M_x, M_y, M_z) [N, N m],
         searched from ``start`` (default: unloaded). Converged when the force balance holds to
         1e-9 of the load or the preload; load steps are tried if a direct solve fails."""
         load = checks.finite("load", load)
         tolerance = 1e-9 * max(float(np.max(np.abs(load))), self.preload)
-        q, error = self._solve(load, np.zeros(5) if start is None else start, tolerance)
-        steps = 1
-        while not error <= tolerance and steps < FINEST_CONTINUATION:
-            steps *= 4
-            q = np.zeros(5)
-            for step in range(1, steps + 1):
-                q, error = self._solve(step / steps * load, q, tolerance)
+
+        def solve(part, begin):
+            return newton_system(lambda q: self.restoring(q) + part, lambda q: -self.tangent(q),
+                                 begin, tolerance, NEWTON_ITERATIONS)
+
+        q, error = load_steps(solve, load, np.zeros(5) if start is None else start, tolerance,
+                              FINEST_CONTINUATION)
         if not error <= tolerance:  # NaN: not converged either
             raise ValueError(f"no static equilibrium found under the load {load.tolist()} "
                              f"(F_y, F_z, M_x, M_y, M_z): force balance off by {error:.3g}")
