@@ -36,6 +36,8 @@ NATIVE = {
     **{name: {"F_upper": (0.0, 900.0), "F_lower": (0.0, 900.0), "u": (-0.2, 0.2), "x": (-0.3, 1.3)}
        for name in ("FrictionPositionDependent", "FrictionBallToBall", "FrictionPreloadLoss")},
     "MillingForce": {"u_feed": (-0.05, 0.05)},
+    "BallCarriage5DOF": {"F_z": (-200.0, 200.0), "M_y": (-2.0, 2.0), "M_z": (-1.0, 1.0),
+                         "u_feed": (-0.2, 0.2), "preload": (30.0, 60.0)},  # F_y, M_x: the rigid mode
     "FeedUnitErrors": {"F_x": (-2e3, 2e3), "F_y": (-2e3, 2e3), "F_z": (-6e3, 2e3),
                        "point_x": (-0.1, 0.1), "point_y": (-0.1, 0.1), "point_z": (0.0, 0.2),
                        "x_feed": (-0.05, 0.05)},
@@ -43,9 +45,9 @@ NATIVE = {
 STEP = 1e-4  # s
 #: components whose outputs come from an iterative solve: the editions' iterates round
 #: differently (numpy's LAPACK against gw_solve), so their answers agree to the solve's
-#: tolerance only: of each output's largest magnitude over the script (FeedUnitErrors: force
-#: balance to 1e-9 of the load, the errors then to about that share of the largest)
-SOLVED = {"FeedUnitErrors": 1e-8}
+#: tolerance only: of each output's largest magnitude over the script (force balance to 1e-9 of
+#: the load: FeedUnitErrors at every evaluation, BallCarriage5DOF at its start in equilibrium)
+SOLVED = {"FeedUnitErrors": 1e-8, "BallCarriage5DOF": 1e-8}
 
 
 @pytest.fixture(scope="session")
@@ -97,6 +99,7 @@ BAD = [("VerticalDynamics", {"mass": -1.0}, "Carriage.mass must be > 0, got -1.0
        ("HorizontalRig", {"mass": math.inf}, "mass must be finite, got inf"),
        ("FrictionDahl", {"second_share": 0.5, "third_share": 0.75},
         "third_share must lie in [0.0, 0.5], got 0.75"),
+       ("BallCarriage5DOF", {"mass": -0.3}, "mass must be > 0, got -0.3"),
        ("FeedUnitErrors", {"conformity": 0.45}, "conformity must be > 0.5"),
        ("FeedUnitErrors", {"balls_per_row": 50}, "the sliders would overlap")]
 

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
+import scipy.linalg
 import scipy.optimize
 import scipy.special
 from compiled import compiled
@@ -166,6 +167,26 @@ def repeated_and_ranged(x, n):
     return float(np.max(values) - 3.0 * values.min() + np.sum(values))
 
 
+def sliced_and_joined(x, n):
+    """np.concatenate, slices of a run-time array with run-time bounds, np.dot, np.diag,
+    np.outer and np.trace."""
+    count = int(n)
+    values = np.concatenate([np.arange(count) * x, np.array([1.0, -x])])
+    head, tail = values[:count], values[count - 1:]
+    matrix = np.diag(np.array([x, 2.0, 3.0])) + np.outer(np.array([1.0, x, 0.5]), np.array([x, 1.0, 2.0]))
+    return float(np.dot(head, head) + 7.0 * np.sum(tail) + np.trace(matrix) + np.diag(matrix)[1]
+                 + 3.0 * values[-count:][0] + tail.size)
+
+
+def symmetric_eigenvalues(x, y):
+    """scipy.linalg.eigh's eigenvalues of a symmetric 4 x 4 pair (a, b positive definite)."""
+    a = np.array([[4.0, x, 0.5, 0.0], [x, 3.0, y, 0.1], [0.5, y, 2.0 + x, 0.2],
+                  [0.0, 0.1, 0.2, 1.0]])
+    b = np.diag(np.array([1.0, 2.0, 0.5, 3.0])) + 0.1 * np.outer(np.ones(4), np.ones(4))
+    values = scipy.linalg.eigh(a, b, eigvals_only=True)
+    return float(values[0] + 10.0 * values[1] + 100.0 * values[2] + 1000.0 * values[3])
+
+
 def solved(x, y):
     """np.linalg.solve of a 3 x 3 system that needs row exchanges."""
     a = np.array([[1e-3 * x, 2.0, 1.0], [3.0, y, -1.0], [1.0, 1.0, 4.0 + x]])
@@ -198,14 +219,16 @@ CASES = [(loop_carried, [(1.5, 0.0), (1.5, 1.0), (3.0, 7.0)]),
          (caught, [(4.0, 1.0)]),
          (guarded, [(-1.0, 0.0), (0.0, 0.5), (4.0, 1.0), (4.0, 3.0)]),
          (held_or_computed, [(2.0, 1.0), (2.0, -1.0)]),
-         (repeated_and_ranged, [(0.5, 1.0), (-2.0, 7.0)])]
+         (repeated_and_ranged, [(0.5, 1.0), (-2.0, 7.0)]),
+         (sliced_and_joined, [(0.5, 1.0), (-2.0, 7.0), (3.0, 40.0)])]
 
 
 @pytest.mark.parametrize("function, inputs, tolerance", [
     (solved, [(0.0, 1.0), (2.0, -3.0), (1e3, 1e-3)], 1e-13),  # LU's rounding against LAPACK's
+    (symmetric_eigenvalues, [(0.0, 0.0), (1.0, -0.5), (-2.0, 1.5)], 1e-13),  # Jacobi's
     (elliptic, [(0.0, 0), (0.3, 0), (-2.0, 0), (0.9, 0), (1 - 1e-12, 0)], 1e-14),
     (bracketed, [(1.0, 0.5), (0.0, 8.0), (30.0, -1.0)], 1e-13)],  # Brent's iterates, to xtol
-    ids=["solve", "ellipk-ellipe", "brentq"])
+    ids=["solve", "eigh", "ellipk-ellipe", "brentq"])
 def test_library_functions_agree_with_numpy_and_scipy_to_their_precision(function, inputs,
                                                                          tolerance):
     c = compiled(function, 2)
@@ -220,6 +243,18 @@ def test_a_singular_solve_and_a_bracket_without_a_sign_change_fail_in_numpys_wor
         singular(1.0, 2.0)
     with pytest.raises(ValueError, match="f\\(a\\) and f\\(b\\) must have different signs"):
         compiled(lambda_free_bracket, 2)(1.0, 2000.0)
+
+
+def test_a_run_time_array_in_a_message_is_written_with_its_numbers():
+    with pytest.raises(ValueError, match=r"^bad: array\(\[0\.0, 2\.5, 5\.0\]\)$"):
+        compiled(listed_in_message, 2)(2.5, 3.0)
+
+
+def listed_in_message(x, n):
+    values = np.arange(int(n)) * x
+    if n > 0:
+        raise ValueError(f"bad: {values!r}")
+    return x
 
 
 def singular(x, y):

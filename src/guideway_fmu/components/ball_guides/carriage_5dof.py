@@ -37,7 +37,7 @@ class BallCarriage5DOF(GuidewaySlave):
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.14, step_size=1e-5)
 
     description = __doc__.splitlines()[0]
-    internal_state = ("state", "time")
+    internal_state = ("state", "time", "started")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -76,7 +76,7 @@ class BallCarriage5DOF(GuidewaySlave):
         for row in (1, 2):
             self.output(f"row_load_{row}", "N", f"total normal ball load of row {row} (linear "
                         f"springs: its change from rest)", ("preload",))
-        self.state, self.time = np.zeros(11), 0.0
+        self.state, self.time, self.started = np.zeros(11), 0.0, False
 
     @classmethod
     def continuous_model(cls, parameters):
@@ -86,12 +86,13 @@ class BallCarriage5DOF(GuidewaySlave):
         self.time = start_time
 
     def initialise(self):
-        self.state = None  # stays None if there is no equilibrium
-        self.state = np.array(self.model().initial_state(self.time, self.model_inputs()))
+        self.started = False  # stays False if there is no equilibrium
+        self._started()
 
     def _started(self) -> np.ndarray:
-        if self.state is None:  # the initialisation's error message says why
+        if not self.started:  # the initialisation's error message says why
             self.state = np.array(self.model().initial_state(self.time, self.model_inputs()))
+            self.started = True
         return self.state
 
     def advance(self, t, h):

@@ -15,7 +15,7 @@ written once for every native FMU; :mod:`.component` writes a component's unit a
 COMPONENTS = ("HorizontalRig", "FrictionCoulomb", "FrictionStribeck", "FrictionDahl",
               "ContactDryHertz", "VerticalDynamics", "FeedKinematics", "ContactEHL",
               "FrictionPositionDependent", "FrictionBallToBall", "FrictionPreloadLoss",
-              "MillingForce", "FeedUnitErrors")
+              "MillingForce", "FeedUnitErrors", "BallCarriage5DOF")
 
 #: components that stay Python-only by design, and why (the others are not translated yet:
 #: docs/native.md quotes the translator's refusal for each)

@@ -17,6 +17,7 @@ from .values import (
     Message,
     Obj,
     Scalar,
+    Span,
     Text,
     Tuple,
     Vector,
@@ -100,6 +101,9 @@ class Expressions:
                 raise self.error(f"index {key.value!r} of {describe(container)}") from None
         if isinstance(container, Const) and isinstance(key, Const):
             return from_python(container.value[key.value])
+        if isinstance(container, Vector) and (isinstance(key, Span) or (
+                isinstance(key, Const) and isinstance(key.value, slice))):
+            return self.vector_slice(container, key)
         if isinstance(container, Vector):
             return self.vector_item(container, key)
         if isinstance(container, Array) and isinstance(key, Array) and \
@@ -111,7 +115,13 @@ class Expressions:
         parts = [self.expr(p) if p is not None else Const(None)
                  for p in (node.lower, node.upper, node.step)]
         if not all(isinstance(p, Const) for p in parts):
-            raise self.error("a slice must be known when the C is written")
+            if isinstance(parts[2], Const) and parts[2].value is None and all(
+                    isinstance(p, Const) and p.value is None or isinstance(p, Scalar) and
+                    p.ctype == "long" or isinstance(p, Const) and isinstance(p.value, int)
+                    for p in parts[:2]):
+                return Span(*parts[:2])  # of a run-time array
+            raise self.error("a slice must be known when the C is written, or whole-number "
+                             "bounds without a step")
         return Const(slice(*(p.value for p in parts)))
 
     def expr_NamedExpr(self, node):
@@ -423,6 +433,8 @@ class Expressions:
                 parts.append((value, spec, conversion))
             elif type(value) in (Tuple, Array, Listed) and not spec:  # str is repr here
                 parts.extend(self.tuple_repr(value))
+            elif isinstance(value, Vector) and not spec:
+                parts.append(value)
             else:
                 parts.append((self.scalar(value), spec, conversion))
         if all(isinstance(p, Const) for p in parts):
@@ -470,6 +482,13 @@ class Expressions:
                 self.message_part(item)
                 if condition is not None:
                     self.emit("}")
+            return
+        if isinstance(part, Vector):  # written as a 1-D array of known length is (tuple_repr)
+            self.emit('gw_msg_text(ctx, "array([");')
+            with self.counting(part.length) as k:
+                self.emit(f'if ({k}) gw_msg_text(ctx, ", ");')
+                self.message_part(self.element(part, k))
+            self.emit('gw_msg_text(ctx, "])");')
             return
         if isinstance(part, Scalar):
             part = (part, "", "")

@@ -342,4 +342,69 @@ static int gw_solve(long n, double *a, double *b) {
     return 0;
 }
 
+/* scipy.linalg.eigh(a, b, eigvals_only=True) of a small symmetric n x n a (row-major) and,
+ * unless b is NULL, a symmetric positive definite b: b = L L^T (Cholesky), then the cyclic
+ * Jacobi method on L^-1 a L^-T until every off-diagonal entry is below 1e-16 of the largest
+ * diagonal one. The eigenvalues go to w in ascending order. a and b are overwritten; 1 when b
+ * is not positive definite, else 0. */
+static int gw_eigvalsh(long n, double *a, double *b, double *w) {
+    long i, j, k, p, q, sweep;
+    double t, c, s, theta, off, big, akp, akq;
+    if (b) {
+        for (j = 0; j < n; ++j) { /* b's lower triangle becomes L */
+            t = b[j * n + j];
+            for (k = 0; k < j; ++k) t -= b[j * n + k] * b[j * n + k];
+            if (!(t > 0.0)) return 1;
+            b[j * n + j] = sqrt(t);
+            for (i = j + 1; i < n; ++i) {
+                t = b[i * n + j];
+                for (k = 0; k < j; ++k) t -= b[i * n + k] * b[j * n + k];
+                b[i * n + j] = t / b[j * n + j];
+            }
+        }
+        for (j = 0; j < n; ++j) /* a := L^-1 a, column by column (forward substitution) */
+            for (i = 0; i < n; ++i) {
+                t = a[i * n + j];
+                for (k = 0; k < i; ++k) t -= b[i * n + k] * a[k * n + j];
+                a[i * n + j] = t / b[i * n + i];
+            }
+        for (i = 0; i < n; ++i) /* a := a L^-T, row by row */
+            for (j = 0; j < n; ++j) {
+                t = a[i * n + j];
+                for (k = 0; k < j; ++k) t -= a[i * n + k] * b[j * n + k];
+                a[i * n + j] = t / b[j * n + j];
+            }
+    }
+    for (sweep = 0; sweep < 100; ++sweep) {
+        off = big = 0.0;
+        for (i = 0; i < n; ++i) {
+            big = fmax(big, fabs(a[i * n + i]));
+            for (j = i + 1; j < n; ++j) off = fmax(off, fabs(a[i * n + j]));
+        }
+        if (!(off > 1e-16 * big)) break; /* a NaN stops too */
+        for (p = 0; p < n; ++p)
+            for (q = p + 1; q < n; ++q) {
+                if (a[p * n + q] == 0.0) continue;
+                theta = (a[q * n + q] - a[p * n + p]) / (2.0 * a[p * n + q]);
+                t = (theta >= 0.0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
+                c = 1.0 / sqrt(t * t + 1.0);
+                s = t * c;
+                for (k = 0; k < n; ++k) { /* columns p and q */
+                    akp = a[k * n + p]; akq = a[k * n + q];
+                    a[k * n + p] = c * akp - s * akq;
+                    a[k * n + q] = s * akp + c * akq;
+                }
+                for (k = 0; k < n; ++k) { /* rows p and q */
+                    akp = a[p * n + k]; akq = a[q * n + k];
+                    a[p * n + k] = c * akp - s * akq;
+                    a[q * n + k] = s * akp + c * akq;
+                }
+            }
+    }
+    for (i = 0; i < n; ++i) w[i] = a[i * n + i];
+    for (i = 1; i < n; ++i) /* insertion sort, ascending */
+        for (j = i; j > 0 && w[j - 1] > w[j]; --j) { t = w[j]; w[j] = w[j - 1]; w[j - 1] = t; }
+    return 0;
+}
+
 #endif

@@ -12,6 +12,7 @@ import builtins
 import math
 
 import numpy as np
+import scipy.linalg
 import scipy.special
 from scipy.optimize import RootResults, brentq
 
@@ -535,6 +536,103 @@ def _solve(tr, args, kwargs):
     return Array([tr.variable(Scalar("double", f"{rhs}[{k}]"), tr.frame) for k in range(n)])
 
 
+def _concatenate(tr, args, kwargs):
+    """np.concatenate of 1-D arrays along their one axis."""
+    if _known(np.concatenate, args, kwargs):
+        return _fold(np.concatenate, args, kwargs)
+    if len(args) != 1 or kwargs.get("axis", Const(0)).value != 0:
+        raise tr.error("np.concatenate is translated for 1-D arrays along axis 0 only")
+    parts = [_asarray(tr, [item], {}) for item in tr.iterate(args[0])]
+    if all(isinstance(p, Array) for p in parts):
+        return Array([item for p in parts for item in p.items])
+    if not all(isinstance(p, (Array, Vector)) for p in parts):
+        raise tr.error("np.concatenate is translated for 1-D arrays only")
+    return tr.concatenated([tr.fixed_to_vector(p) if isinstance(p, Array) else p for p in parts])
+
+
+def _diag(tr, args, kwargs):
+    """np.diag of arrays of known size: a square matrix of a 1-D array, the diagonal of one."""
+    if _known(np.diag, args, kwargs):
+        return _fold(np.diag, args, kwargs)
+    value = _asarray(tr, [args[0]], {})
+    if len(args) > 1 or kwargs or not isinstance(value, Array):
+        raise tr.error("np.diag is translated for arrays of known size, k = 0, only")
+    if all(isinstance(row, Array) for row in value.items):
+        return Array([row.items[k] for k, row in enumerate(value.items)])
+    n = len(value.items)
+    return Array([Array([value.items[i] if i == j else Const(0.0) for j in range(n)])
+                  for i in range(n)])
+
+
+def _outer(tr, args, kwargs):
+    a, b = (_asarray(tr, [v], {}) for v in args)
+    if kwargs or not (isinstance(a, Array) and isinstance(b, Array)):
+        raise tr.error("np.outer is translated for 1-D arrays of known size only")
+    return Array([Array([tr.binary(ast.Mult(), x, y) for y in b.items]) for x in a.items])
+
+
+def _trace(tr, args, kwargs):
+    value = _asarray(tr, [args[0]], {})
+    if kwargs or len(args) > 1 or not isinstance(value, Array):
+        raise tr.error("np.trace is translated for a square matrix of known size only")
+    return _sum(tr, [Tuple([row.items[k] for k, row in enumerate(value.items)])], {})
+
+
+def _matrix(tr, value, n: int, what: str) -> str:
+    """A C array of the n x n ``value`` of known size (row-major)."""
+    value = _asarray(tr, [value], {})
+    if not (isinstance(value, Array) and len(value.items) == n and all(
+            isinstance(row, Array) and len(row.items) == n for row in value.items)):
+        raise tr.error(f"{what} is translated for n x n matrices of known size only")
+    name = tr.out.declare("double", "matrix", n * n)
+    for i, row in enumerate(value.items):
+        for j, item in enumerate(row.items):
+            tr.emit(f"{name}[{i * n + j}] = {tr.scalar(item).code};")
+    return name
+
+
+def _eigh(tr, args, kwargs):
+    """scipy.linalg.eigh(a, b, eigvals_only=True) of symmetric matrices of known size
+    (gw_eigvalsh): the eigenvalues in ascending order; LinAlgError where b is not positive
+    definite."""
+    given = {**dict(zip(("a", "b"), args)), **kwargs}
+    if set(given) - {"a", "b", "eigvals_only"} or not given.get("eigvals_only", Const(False)).value:
+        raise tr.error("scipy.linalg.eigh is translated with eigvals_only=True only")
+    a = _asarray(tr, [given["a"]], {})
+    n = len(a.items) if isinstance(a, Array) else 0
+    matrix = _matrix(tr, a, n, "scipy.linalg.eigh")
+    other = _matrix(tr, given["b"], n, "scipy.linalg.eigh") if "b" in given else "NULL"
+    values = tr.out.declare("double", "eigenvalues", n)
+    tr.emit(f"if (gw_eigvalsh({n}L, {matrix}, {other}, {values})) {{")
+    tr.fail([Const("the matrix b is not positive definite")], np.linalg.LinAlgError)
+    tr.emit("}")
+    return Array([tr.variable(Scalar("double", f"{values}[{k}]"), tr.frame) for k in range(n)])
+
+
+def _dot(tr, args, kwargs):
+    """np.dot of two 1-D arrays: the sum of their products (in index order; numpy's BLAS may
+    add in another order, so the last bits may differ)."""
+    if _known(np.dot, args, kwargs):
+        return _fold(np.dot, args, kwargs)
+    a, b = (_asarray(tr, [v], {}) for v in args)
+    if kwargs or not all(isinstance(v, (Array, Vector)) for v in (a, b)):
+        raise tr.error("np.dot is translated for two 1-D arrays only")
+    if isinstance(a, Array) and isinstance(b, Array):
+        if len(a.items) != len(b.items):
+            raise tr.error(f"np.dot of arrays of {len(a.items)} and {len(b.items)} numbers")
+        return _sum(tr, [Tuple([tr.binary(ast.Mult(), x, y) for x, y in zip(a.items, b.items)])], {})
+    a, b = (tr.fixed_to_vector(v) if isinstance(v, Array) else v for v in (a, b))
+    tr.emit(f"if ({a.length.code} != {b.length.code}) {{")
+    tr.fail([Const("shapes ("), a.length, Const(",) and ("), b.length,
+             Const(",) not aligned")], ValueError)
+    tr.emit("}")
+    total = tr.out.declare("double", "dot")
+    tr.emit(f"{total} = 0.0;")
+    with tr.counting(a.length) as k:
+        tr.emit(f"{total} += {a.data}[{k}] * {b.data}[{k}];")
+    return Scalar("double", total)
+
+
 def _folded(function):
     """A numpy constructor of a shape known when the C is written (np.zeros(5), np.eye(5))."""
     def handler(tr, args, kwargs):
@@ -657,7 +755,8 @@ def table() -> dict:
         builtins.range: _range, builtins.bool: _bool, builtins.dict: _dict, builtins.map: _map, np.where: _where,
         np.broadcast_to: _broadcast_to, np.broadcast_arrays: _broadcast_arrays, np.stack: _stack,
         np.zeros_like: _like(0.0), np.ones_like: _like(1.0), np.full_like: _like(None),
-        np.zeros: _folded(np.zeros), np.ones: _folded(np.ones), np.eye: _folded(np.eye), np.linalg.solve: _solve, np.ravel: _ravel, np.arange: _arange,
+        np.zeros: _folded(np.zeros), np.ones: _folded(np.ones), np.eye: _folded(np.eye), np.linalg.solve: _solve, np.concatenate: _concatenate, np.diag: _diag, np.outer: _outer,
+        np.trace: _trace, np.dot: _dot, scipy.linalg.eigh: _eigh, np.ravel: _ravel, np.arange: _arange,
         np.divide: _divide, brentq: _brentq, np.repeat: _repeat(False), np.tile: _repeat(True),
         np.clip: _numeric(np.clip, _clip), object.__setattr__: _setattr,
     })

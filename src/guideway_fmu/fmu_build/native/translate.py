@@ -138,8 +138,8 @@ def from_python(value, layout=None):
         return Dict({k: from_python(v) for k, v in value.items()})
     if _is_object(value):
         return Obj(type(value), {k: from_python(v) for k, v in vars(value).items()})
-    if isinstance(value, types.FunctionType) and value.__closure__:
-        return func_of(value)
+    if isinstance(value, types.FunctionType) and value.__closure__ and translatable(value):
+        return func_of(value)  # a library's decorated function stays one, for its intrinsic
     return Const(value)
 
 
@@ -310,6 +310,8 @@ class TranslatorCore:
         if isinstance(current, Scalar):
             return isinstance(value, Scalar) or (isinstance(value, Const) and is_number(value.value))
         from .values import same_shape
+        if isinstance(current, Vector):  # any run-time array of its kind is copied in
+            return isinstance(value, Vector) and value.ctype == current.ctype
         if isinstance(current, Tuple) and isinstance(value, Tuple):
             return len(current.items) == len(value.items) and all(
                 TranslatorCore._fits(c, v) for c, v in zip(current.items, value.items))

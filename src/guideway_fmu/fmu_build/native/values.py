@@ -132,6 +132,14 @@ class Vector:
 
 
 @dataclass
+class Span:
+    """``start:stop`` with a bound known at run time only (each a Scalar or Const None)."""
+
+    start: object
+    stop: object
+
+
+@dataclass
 class Slot:
     """A numpy array a model holds, laid out when the first value is stored into it: struct
     fields of its length (an :class:`Array`) or of a run-time array (a :class:`Vector`).

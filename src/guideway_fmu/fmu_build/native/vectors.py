@@ -133,6 +133,26 @@ class Vectors:
         with self.counting(value.length) as k:
             self.emit(f"{target.data}[{k}] = {value.data}[{k}];")
 
+    def vector_slice(self, vector: Vector, key) -> Vector:
+        """``vector[start:stop]`` (Python's rules: negative bounds from the end, clipped)."""
+        bounds = (key.value.start, key.value.stop) if isinstance(key, Const) else \
+            tuple(b.value if isinstance(b, Const) else b for b in (key.start, key.stop))
+        if isinstance(key, Const) and key.value.step not in (None, 1):
+            raise self.error("a slice of a run-time array with a step is not translated")
+        n, ends = vector.length.code, []
+        for bound, default in zip(bounds, ("0L", n)):
+            end = self.out.declare("long", "end")
+            code = default if bound is None else (f"{bound}L" if isinstance(bound, int) else
+                                                  self.scalar(bound).code)
+            self.emit(f"{end} = {code};")
+            self.emit(f"if ({end} < 0) {end} += {n};")
+            self.emit(f"if ({end} < 0) {end} = 0; else if ({end} > {n}) {end} = {n};")
+            ends.append(end)
+        out = self.new_vector(vector.ctype, f"({ends[1]} > {ends[0]} ? {ends[1]} - {ends[0]} : 0)")
+        with self.counting(out.length) as k:
+            self.emit(f"{out.data}[{k}] = {vector.data}[{ends[0]} + {k}];")
+        return out
+
     def repeated(self, vector: Vector, count: Scalar, whole: bool) -> Vector:
         """np.tile(vector, count) (``whole``) or np.repeat(vector, count) as a run-time array."""
         n = vector.length.code
@@ -140,6 +160,17 @@ class Vectors:
         with self.counting(out.length) as k:
             source = f"{k} % {n}" if whole else f"{k} / {count.code}"
             self.emit(f"{out.data}[{k}] = {vector.data}[{source}];")
+        return out
+
+    def concatenated(self, vectors: list) -> Vector:
+        """np.concatenate of 1-D run-time arrays, one after the other."""
+        out = self.new_vector(vectors[0].ctype, " + ".join(v.length.code for v in vectors))
+        at = self.out.declare("long", "at")
+        self.emit(f"{at} = 0;")
+        for vector in vectors:
+            with self.counting(vector.length) as k:
+                self.emit(f"{out.data}[{at} + {k}] = {vector.data}[{k}];")
+            self.emit(f"{at} += {vector.length.code};")
         return out
 
     def fixed_to_vector(self, array: Array) -> Vector:

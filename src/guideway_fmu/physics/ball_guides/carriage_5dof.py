@@ -107,13 +107,13 @@ def approach_change(directions, q):
 
 def generalized(directions, ball_forces) -> np.ndarray:
     """G^T f [N, N m]: the generalized force of forces f [N] along the balls' approach."""
-    return np.array([np.sum(g * ball_forces) for g in directions])
+    return np.array([np.dot(g, ball_forces) for g in directions])
 
 
 def stiffness_matrix(directions, ball_stiffness) -> np.ndarray:
     """K = G^T diag(k) G [N/m, N, N m] from each ball's normal stiffness k [N/m]."""
-    k = np.asarray(ball_stiffness, dtype=float)
-    return np.array([[np.sum(k * a * b) for b in directions] for a in directions])
+    pushed = [np.asarray(ball_stiffness, dtype=float) * b for b in directions]
+    return np.array([[np.dot(a, kb) for kb in pushed] for a in directions])
 
 
 def rigid_direction(body: CarriageBody) -> np.ndarray:
@@ -280,9 +280,11 @@ class BallCarriageModel(ContinuousModel):
         positions = ball_positions(self.per_row, self.pitch, shift)
         if self.linear.size:
             g = contact_directions(self.body, positions)
-            return g, lambda q: self.linear * approach_change(g, q), lambda q: self.linear
-        hertz = HertzBalls(self.body, positions, self.k_h, preload)
-        return hertz.directions, hertz.loads, hertz.ball_stiffness
+            loads, stiffness = lambda q: self.linear * approach_change(g, q), lambda q: self.linear
+        else:
+            hertz = HertzBalls(self.body, positions, self.k_h, preload)
+            g, loads, stiffness = hertz.directions, hertz.loads, hertz.ball_stiffness
+        return g, loads, stiffness
 
     def rest_loads(self, preload: float) -> float:
         """Q_0 [N] of a ball at rest (0 with linear springs)."""

@@ -191,7 +191,7 @@ class FeedUnit:
         t_yy, t_yz, t_zz = self.ball_tangents(q) if ball_tangents is None else ball_tangents
         columns = [displacement(unit, self.x, self.y, self.z)[1:] for unit in np.eye(5)]
         pushed = [(t_yy * g_y + t_yz * g_z, t_yz * g_y + t_zz * g_z) for g_y, g_z in columns]
-        return np.array([[np.sum(g_y * p_y + g_z * p_z) for p_y, p_z in pushed]
+        return np.array([[np.dot(g_y, p_y) + np.dot(g_z, p_z) for p_y, p_z in pushed]
                          for g_y, g_z in columns])
 
     def equilibrium(self, load, start=None) -> Equilibrium:
