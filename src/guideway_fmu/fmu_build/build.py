@@ -13,11 +13,13 @@ from __future__ import annotations
 
 import hashlib
 import modulefinder
+import os
 import re
 import shutil
 import sys
 import tempfile
 import zipfile
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pythonfmu
@@ -135,11 +137,14 @@ def pack_edition(slaves: list[tuple[type, Path]], edition: str, cross: bool = Fa
     (:func:`edition_of` decides per class), in the order given; ``cross`` as for :func:`build`."""
     native = {cls for cls, _ in slaves if edition_of(cls.__name__, edition) == "native"}
     python = iter(pack([(cls, dest) for cls, dest in slaves if cls not in native]))
-    if native:
-        from .native.build import CROSS, PLATFORM, build_native
-        platforms = tuple(dict.fromkeys([PLATFORM, *CROSS])) if cross else (PLATFORM,)
-    return [build_native(cls, dest, platforms) if cls in native else next(python)
-            for cls, dest in slaves]
+    if not native:
+        return [next(python) for _ in slaves]
+    from .native.build import CROSS, PLATFORM, build_native
+    platforms = tuple(dict.fromkeys([PLATFORM, *CROSS])) if cross else (PLATFORM,)
+    with ThreadPoolExecutor(os.cpu_count()) as compilers:  # the C compiler runs apart
+        built = {cls: compilers.submit(build_native, cls, dest, platforms)
+                 for cls, dest in slaves if cls in native}
+        return [built[cls].result() if cls in native else next(python) for cls, _ in slaves]
 
 
 def pack(slaves: list[tuple[type, Path]], data: dict[str, Path] | None = None,

@@ -87,12 +87,13 @@ class BallCarriage5DOF(GuidewaySlave):
 
     def initialise(self):
         self.started = False  # stays False if there is no equilibrium
-        self._started()
+        self.state = np.array(self.model().initial_state(self.time, self.model_inputs()))
+        self.started = True
 
     def _started(self) -> np.ndarray:
-        if not self.started:  # the initialisation's error message says why
-            self.state = np.array(self.model().initial_state(self.time, self.model_inputs()))
-            self.started = True
+        if not self.started:  # FMI runs initialise first; its error said why it failed
+            raise RuntimeError("the carriage has no start: its initialisation found no static "
+                               "equilibrium")
         return self.state
 
     def advance(self, t, h):
