@@ -28,6 +28,8 @@ from fractions import Fraction
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
+from .fmu_build import EDITIONS
+
 #: errors the library raises about its input or a failed computation: exit status 2
 NAMED_ERRORS = (ValueError, OSError, RuntimeError)
 
@@ -94,7 +96,6 @@ def _written(folder: Path, since: float) -> list[str]:
     return sorted(str(p) for p in folder.rglob("*") if p.is_file() and p.stat().st_mtime >= since)
 
 
-EDITIONS = ("python", "native")  # fmu_build.build.EDITIONS, named here so --help loads nothing
 
 
 def _edition_option(p, what: str) -> None:

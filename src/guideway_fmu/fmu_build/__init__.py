@@ -5,3 +5,8 @@ at process exit; ``error_patch``: a Python exception is fmi2Error, the instance 
 ``uri_patch``: the resource URI decoded; ``elf``: what they read of the binary), ``host_env``
 (the environment a C host needs) and ``c_host.c`` (a minimal C host that checks it).
 """
+
+#: how an FMU runs: "python" (pythonfmu, in the host's Python) or "native" (compiled C,
+#: fmu_build/native, where the component has a native edition); here, where the command line
+#: reads it without loading the builders
+EDITIONS = ("python", "native")

@@ -28,7 +28,8 @@ from pythonfmu.builder import FmuBuilder
 
 from ..components import registry, runtime
 from ..fmi.archive import rewrite
-from . import error_patch, exit_patch, uri_patch
+from . import EDITIONS, error_patch, exit_patch, uri_patch
+from .native import GENERATION_TOOL
 
 LINUX = "binaries/linux64/"  # where an FMU keeps its Linux binary
 RUNTIME = runtime.__name__  # shipped with every FMU, which imports it first (SLAVE_SCRIPT)
@@ -89,11 +90,6 @@ def code_hash(files: list[Path], data: dict[str, Path] | None = None) -> str:
         digest.update(name.encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()[:10]
-
-
-#: how an FMU runs: in the host's Python (pythonfmu), or compiled C without Python
-#: (fmu_build/native) where the component has a native edition
-EDITIONS = ("python", "native")
 
 
 def edition_of(name: str, edition: str) -> str:
@@ -215,22 +211,31 @@ def ensure(out_dir: str | Path, names: list[str] | None = None) -> Path:
     build did not make (a user's replacement) is left alone. Returns out_dir."""
     out_dir = Path(out_dir)
     wanted = registry.names() if names is None else list(dict.fromkeys(names))
-    stale: dict[str, list[str]] = {}
+    stale: dict[tuple[str, bool], list[str]] = {}
     for name in wanted:
-        found = built_edition(out_dir / f"{name}.fmu")
+        fmu = out_dir / f"{name}.fmu"
+        found = built_edition(fmu)
         edition = found[0] if found else "python"
         if found is None or found[1] not in (fmu_hash(registry.component(name), edition), FOREIGN):
-            stale.setdefault(edition, []).append(name)
+            stale.setdefault((edition, found is not None and cross_built(fmu)), []).append(name)
             if found:
-                print(f"rebuilding {out_dir / name}.fmu ({edition} edition): it was built from "
-                      "other code than this package's", file=sys.stderr)
-    for edition, names_ in stale.items():
-        build(out_dir, names_, edition)
+                print(f"rebuilding {fmu} ({edition} edition): it was built from other code than "
+                      "this package's", file=sys.stderr)
+    for (edition, cross), names_ in stale.items():
+        build(out_dir, names_, edition, cross)  # with the platforms it had
     return out_dir
 
 
+def cross_built(fmu: Path) -> bool:
+    """Whether the FMU carries binaries for another platform than this one's (``--cross``)."""
+    from .native.build import CROSS, PLATFORM
+    with zipfile.ZipFile(fmu) as archive:
+        return any(name.startswith(f"binaries/{platform}/") for name in archive.namelist()
+                   for platform in CROSS if platform != PLATFORM)
+
+
 FOREIGN = "foreign"  # built_tag of an FMU this build did not make
-NATIVE_TOOL = re.compile(r'generationTool="guideway-fmu native edition ([0-9a-f]{10})"')
+NATIVE_TOOL = re.compile(rf'generationTool="{re.escape(GENERATION_TOOL)} ([0-9a-f]{{10}})"')
 
 
 def built_edition(fmu: Path) -> tuple[str, str] | None:

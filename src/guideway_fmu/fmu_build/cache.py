@@ -13,7 +13,7 @@ on Windows) + ``guideway-fmu``; never the current folder unless told so. In it::
                                            name (hard links to the above) and README.md: the
                                            folder the commands take FMUs from by file name
 
-The edition is how an FMU runs (fmu_build.build.EDITIONS): "python" (pythonfmu, in the host's
+The edition is how an FMU runs (fmu_build.EDITIONS): "python" (pythonfmu, in the host's
 Python) or "native" (compiled C where the component has a native edition, python elsewhere: a
 native set holds every FMU, so a scenario runs from it unchanged). Builds happen
 under a lock on the edition's folder, and a set folder is made beside and renamed into place, so

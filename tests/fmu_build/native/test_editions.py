@@ -274,7 +274,6 @@ def test_build_edition_native_writes_native_fmus_under_the_same_names_and_python
     from guideway_fmu import cli
     from guideway_fmu.fmu_build import build
 
-    assert cli.EDITIONS == build.EDITIONS
     assert cli.main(["build", "--edition", "native", "--out", str(tmp_path),
                      "FrictionCoulomb", "FrictionMixedEHL"]) == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == [
@@ -304,6 +303,50 @@ def test_ensure_rebuilds_a_native_fmu_of_other_code_in_the_native_edition(native
     assert build.built_edition(fmu) == ("native", "0000000000")
     build.ensure(tmp_path, ["FrictionDahl"])
     assert build.built_edition(fmu) == ("native", current)
+
+
+@pytest.mark.slow
+def test_ensure_rebuilds_a_stale_cross_built_fmu_with_its_other_platforms(native_dir, tmp_path):
+    import shutil
+
+    from guideway_fmu.fmi.archive import rewrite
+    from guideway_fmu.fmu_build import build
+
+    fmu = tmp_path / "FrictionDahl.fmu"
+    shutil.copy2(native_dir / "FrictionDahl.fmu", fmu)
+    current = build.built_tag(fmu)
+    assert not build.cross_built(fmu)
+    with zipfile.ZipFile(fmu, "a") as archive:  # as --cross made it, from older code
+        archive.writestr("binaries/win64/FrictionDahl.dll", b"old")
+    rewrite(fmu, fmu, lambda n, d: (n, d.replace(current.encode(), b"0000000000")))
+    assert build.cross_built(fmu)
+    build.ensure(tmp_path, ["FrictionDahl"])
+    assert build.built_edition(fmu) == ("native", current) and build.cross_built(fmu)
+    with zipfile.ZipFile(fmu) as archive:
+        assert archive.read("binaries/win64/FrictionDahl.dll")[:2] == b"MZ"  # built anew
+        assert "binaries/darwin64/FrictionDahl.dylib" in archive.namelist()
+
+
+def test_getattr_takes_its_default_only_where_the_attribute_is_missing():
+    from compiled import compiled
+
+    from guideway_fmu.fmu_build.native.source import TranslationError
+
+    assert compiled(_attribute_or_default, 2)(2.0, 0.0) == 2.0 + 7.0
+    with pytest.raises(TranslationError, match="attribute real of a run-time double is not translated"):
+        compiled(_untranslated_attribute_or_default, 2)
+
+
+class _Holder:
+    scale = 7.0
+
+
+def _attribute_or_default(x, _):
+    return x + getattr(_Holder, "scale", 1.0) + getattr(_Holder, "missing", 0.0)
+
+
+def _untranslated_attribute_or_default(x, _):
+    return getattr(x, "real", 0.0)  # Python has x.real: a default would change the answer
 
 
 def test_the_caches_native_set_holds_every_fmu_native_where_it_can_be(fmu_dir):

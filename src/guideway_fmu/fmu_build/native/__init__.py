@@ -11,6 +11,10 @@ written once for every native FMU; :mod:`.component` writes a component's unit a
 :mod:`.build` compiles and packs it.
 """
 
+#: a native FMU's modelDescription generationTool: this, then its code hash (native/build.py
+#: writes it, fmu_build.build.built_edition reads it)
+GENERATION_TOOL = "guideway-fmu native edition"
+
 #: the components whose native edition is built and tested against the Python edition
 COMPONENTS = ("HorizontalRig", "FrictionCoulomb", "FrictionStribeck", "FrictionDahl",
               "ContactDryHertz", "VerticalDynamics", "FeedKinematics", "ContactEHL",
@@ -20,14 +24,12 @@ COMPONENTS = ("HorizontalRig", "FrictionCoulomb", "FrictionStribeck", "FrictionD
 #: components that stay Python-only by design, and why (the others are not translated yet:
 #: docs/native.md quotes the translator's refusal for each)
 PYTHON_ONLY = {
-    "FrictionMixedEHL": "its Greenwood-Tripp functions are SciPy's parabolic cylinder and gamma "
-                        "functions, which C's library lacks: a C edition would need them written "
-                        "a second time",
+    "FrictionMixedEHL": "its Greenwood-Tripp functions are SciPy's parabolic cylinder functions "
+                        "(series and asymptotic expansions chosen by range), which C's library "
+                        "lacks: unlike the elliptic integrals (a few lines of the arithmetic-"
+                        "geometric mean), a C edition would be a second special-function library",
     "ForceTable": "it reads a CSV file named by a parameter when the model is built",
     "Wear": "it integrates the wear along the running distance with SciPy's adaptive solve_ivp "
-            "and needs SciPy's complete elliptic integrals for its ball contacts: a C edition "
-            "would need both written a second time",
-    "BallToBallFriction": "its ball loads are solved with SciPy's root (MINPACK's hybrid "
-                          "method) and its friction maps need SciPy's complete elliptic "
-                          "integrals: a C edition would need both written a second time",
+            "(RK45 with error control): a C edition would need that integrator written a second "
+            "time",
 }

@@ -24,6 +24,7 @@ from xml.etree import ElementTree
 import fmpy
 
 from ..build import code_hash, shipped_files
+from . import GENERATION_TOOL
 from .component import Unit
 
 HERE = Path(__file__).resolve().parent
@@ -95,7 +96,7 @@ def model_description(cls, guid: str) -> bytes:
     example = cls(instance_name="native", resources=None)
     root = example.to_xml()
     root.set("guid", f"{{{guid}}}")
-    root.set("generationTool", f"guideway-fmu native edition {native_hash(cls)}")
+    root.set("generationTool", f"{GENERATION_TOOL} {native_hash(cls)}")
     cosim = root.find("CoSimulation")
     cosim.attrib.update(CAPABILITIES)
     cosim.set("modelIdentifier", cls.__name__)

@@ -16,6 +16,7 @@ import scipy.linalg
 import scipy.special
 from scipy.optimize import RootResults, brentq
 
+from .source import MissingAttribute
 from .translate import from_python
 from .values import (
     Array,
@@ -298,7 +299,7 @@ def _getattr(tr, args, kwargs):
         raise tr.error("getattr needs a name known when the C is written")
     try:
         return tr.attribute(args[0], name.value)
-    except Exception:
+    except MissingAttribute:  # a construct not translated stays an error
         if len(args) > 2:
             return args[2]
         raise

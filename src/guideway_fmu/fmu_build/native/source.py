@@ -10,6 +10,10 @@ class TranslationError(Exception):
     """The Python cannot be written as C: the message names the file, line and construct."""
 
 
+class MissingAttribute(TranslationError):
+    """The attribute does not exist (Python would raise AttributeError): getattr's default."""
+
+
 @functools.cache
 def module_tree(path: str) -> ast.Module:
     with open(path, encoding="utf-8") as handle:

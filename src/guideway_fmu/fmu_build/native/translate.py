@@ -24,7 +24,7 @@ import types
 import numpy as np
 
 from .vectors import CAPACITY
-from .source import TranslationError, definition, returns
+from .source import MissingAttribute, TranslationError, definition, returns
 from .values import (
     Array,
     Choice,
@@ -214,9 +214,9 @@ class TranslatorCore:
     def emit(self, line: str) -> None:
         self.out.emit(line)
 
-    def error(self, message: str) -> TranslationError:
+    def error(self, message: str, kind: type = TranslationError) -> TranslationError:
         where = f"{self.frame.path}:{getattr(self.node, 'lineno', '?')}" if self.frame else "?"
-        return TranslationError(f"{where}: {message}")
+        return kind(f"{where}: {message}")
 
     # -- storage ------------------------------------------------------------------------
     def variable(self, value, owner):
@@ -347,14 +347,15 @@ class TranslatorCore:
             for cls in mro[mro.index(value.cls) + 1:]:
                 if name in vars(cls):
                     return self.class_attribute(cls, name, value.receiver)
-            raise self.error(f"super() has no attribute {name}")
+            raise self.error(f"super() has no attribute {name}", MissingAttribute)
         if isinstance(value, Const):
             if isinstance(value.value, type):
                 return self.class_attribute(value.value, name, None)
             try:
                 return from_python(getattr(value.value, name))
             except AttributeError:
-                raise self.error(f"{describe(value)} has no attribute {name}") from None
+                raise self.error(f"{describe(value)} has no attribute {name}",
+                                 MissingAttribute) from None
         if isinstance(value, Dict) and name in ("items", "keys", "values", "get"):
             return Const(_Bound(_DICT_METHODS[name], value))
         if isinstance(value, Text) and name == "split":
@@ -377,7 +378,7 @@ class TranslatorCore:
                 break
         else:
             if not hasattr(cls, name):
-                raise self.error(f"{cls.__name__} has no attribute {name}")
+                raise self.error(f"{cls.__name__} has no attribute {name}", MissingAttribute)
             return from_python(getattr(cls, name))
         if isinstance(attr, classmethod):
             return func_of(attr.__func__, Const(cls))

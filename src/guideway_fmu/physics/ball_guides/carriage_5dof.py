@@ -124,11 +124,11 @@ def rigid_direction(body: CarriageBody) -> np.ndarray:
     return np.array([arm, 0.0, c, 0.0, 0.0]) / np.hypot(arm, c)
 
 
-def balanced(body: CarriageBody, directions, loads, stiffness, rest: float, external) -> np.ndarray:
-    """q where balls of normal load ``loads(q)`` [N] (``rest`` at q = 0) and tangent stiffness
-    ``stiffness(q)`` [N/m] along ``directions`` balance ``external`` (F_y, F_z, M_x, M_y, M_z):
-    Newton's method from the unloaded carriage, in load steps where it does not converge, to
-    1e-9 of the load or the rest load. The rigid direction (no ball resists it) is held at 0:
+def balanced(body: CarriageBody, directions, loads, stiffness, rest, external) -> np.ndarray:
+    """q where balls of normal load ``loads(q)`` [N] (each ball's ``rest`` at q = 0) and tangent
+    stiffness ``stiffness(q)`` [N/m] along ``directions`` balance ``external`` (F_y, F_z, M_x,
+    M_y, M_z): Newton's method from the unloaded carriage, in load steps where it does not
+    converge, to 1e-9 of the load or the largest rest load. The rigid direction (no ball resists it) is held at 0:
     a stiffness along it in the Jacobian keeps every step off it. ValueError if the load drives
     that direction, or if the balls cannot carry it."""
     f = checks.finite("load", external)
@@ -136,7 +136,7 @@ def balanced(body: CarriageBody, directions, loads, stiffness, rest: float, exte
         raise ValueError("preload must be > 0 for the start in static equilibrium (unpreloaded "
                          "balls have no stiffness at rest)")
     rigid = rigid_direction(body)
-    scale = max(float(np.max(np.abs(f))), rest)
+    scale = max(float(np.max(np.abs(f))), float(np.max(rest)))
     if abs(float(np.sum(rigid * f))) > 1e-9 * scale:
         raise ValueError(f"the load {f.tolist()} (F_y, F_z, M_x, M_y, M_z) drives the motion "
                          f"no ball resists (lateral shift with roll); balance it")
@@ -214,6 +214,9 @@ class HertzBalls:
         self.k_h = checks.positive("k_h", k_h)
         self.preload = float(checks.non_negative("preload", preload))
         self.rest = float(hertz_point.approach(k_h, preload))
+        #: each ball's load at rest as the Hertz law gives it back (the preload to rounding,
+        #: computed as every load is): the carriage at rest then feels no force at all
+        self.rest_loads = self.loads(np.zeros(5))
 
     def approaches(self, q) -> np.ndarray:
         """delta_i [m] of every ball (row 1, then row 2) at the displacement q."""
@@ -229,7 +232,7 @@ class HertzBalls:
 
     def restoring(self, q) -> np.ndarray:
         """Generalized force of the balls on the carriage, -G^T (Q - Q_0)."""
-        return -generalized(self.directions, self.loads(q) - self.preload)
+        return -generalized(self.directions, self.loads(q) - self.rest_loads)
 
     def tangent(self, q) -> np.ndarray:
         """Tangent stiffness matrix G^T diag(k) G at q."""
@@ -238,7 +241,7 @@ class HertzBalls:
     def equilibrium(self, external) -> np.ndarray:
         """q where the balls balance ``external`` (F_y, F_z, M_x, M_y, M_z) (:func:`balanced`)."""
         return balanced(self.body, self.directions, self.loads, self.ball_stiffness,
-                        self.preload, external)
+                        self.rest_loads, external)
 
 
 class BallCarriageModel(ContinuousModel):
@@ -276,19 +279,18 @@ class BallCarriageModel(ContinuousModel):
         self.mass = np.diag(body.mass_matrix())
 
     def balls(self, shift: float, preload: float):
-        """(directions, loads(q), stiffness(q)) of the balls at the shift [m] and preload [N]."""
+        """(directions, loads(q), stiffness(q), each ball's load at rest [N]) of the balls at
+        the shift [m] and preload [N] (linear springs: their change from rest)."""
         positions = ball_positions(self.per_row, self.pitch, shift)
         if self.linear.size:
             g = contact_directions(self.body, positions)
             loads, stiffness = lambda q: self.linear * approach_change(g, q), lambda q: self.linear
+            rest = np.zeros_like(self.linear)
         else:
             hertz = HertzBalls(self.body, positions, self.k_h, preload)
             g, loads, stiffness = hertz.directions, hertz.loads, hertz.ball_stiffness
-        return g, loads, stiffness
-
-    def rest_loads(self, preload: float) -> float:
-        """Q_0 [N] of a ball at rest (0 with linear springs)."""
-        return 0.0 if self.linear.size else preload
+            rest = hertz.rest_loads
+        return g, loads, stiffness, rest
 
     def state_scales(self):
         return (1e-6,) * 5 + (1e-3,) * 5 + (self.pitch,)
@@ -299,25 +301,23 @@ class BallCarriageModel(ContinuousModel):
 
     def initial_state(self, t, inputs):
         """Static equilibrium under the load at t, at rest, balls unshifted."""
-        g, loads, stiffness = self.balls(0.0, inputs["preload"])
-        q = balanced(self.body, g, loads, stiffness, self.rest_loads(inputs["preload"]),
-                     self.load(inputs))
+        q = balanced(self.body, *self.balls(0.0, inputs["preload"]), self.load(inputs))
         return (*q, *np.zeros(5), 0.0)
 
     def derivatives(self, t, state, inputs):
         y = np.asarray(state, dtype=float)
         q, rate = y[:5], y[5:10]
-        g, loads, _ = self.balls(y[10], inputs["preload"])
+        g, loads, _, rest = self.balls(y[10], inputs["preload"])
         forces = loads(q)
         in_contact = np.where(self.linear.size > 0, True, forces > 0.0)  # linear: always
-        restoring = -generalized(g, forces - self.rest_loads(inputs["preload"]))
+        restoring = -generalized(g, forces - rest)
         damping = self.damping * generalized(g, in_contact * approach_change(g, rate))
         acceleration = (self.load(inputs) + restoring - damping) / self.mass
         return (*rate, *acceleration, 0.5 * inputs["u_feed"])
 
     def outputs(self, t, state, inputs, wanted=None):
         y = np.asarray(state, dtype=float)
-        _, loads, _ = self.balls(y[10], inputs["preload"])
+        loads = self.balls(y[10], inputs["preload"])[1]
         q_loads = loads(y[:5])
         out = {name: float(value) for name, value in zip(self.states[:10], y[:10])}
         out["row_load_1"] = float(np.sum(q_loads[:self.per_row]))
@@ -328,7 +328,7 @@ class BallCarriageModel(ContinuousModel):
         """Highest natural frequency [Hz] of the carriage linearised at the state (for the
         integrator's substeps: the balls stiffen under load and as the preload rises)."""
         y = np.asarray(state, dtype=float)
-        g, _, stiffness = self.balls(y[10], preload)
+        g, _, stiffness, _ = self.balls(y[10], preload)
         values = eigh(stiffness_matrix(g, stiffness(y[:5])), np.diag(self.mass), eigvals_only=True)
         return float(np.sqrt(max(values[-1], 0.0)) / (2 * np.pi))
 
