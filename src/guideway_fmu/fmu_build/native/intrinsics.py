@@ -212,11 +212,8 @@ def _np_extreme(is_max: bool):
         tr.fail([Const("zero-size array to reduction operation "
                        f"{'maximum' if is_max else 'minimum'} which has no identity")], ValueError)
         tr.emit("}")
-        result = tr.out.declare("double", "extreme")
-        tr.emit(f"{result} = {value.data}[0];")
-        with tr.counting(value.length) as k:
-            tr.emit(f"{result} = {c_name}({result}, {value.data}[{k}]);")
-        return Scalar("double", result)
+        return tr.fold(value.length, "extreme", f"{value.data}[0]",
+                       lambda k, it: f"{c_name}({it}, {value.data}[{k}])")
     return handler
 
 
@@ -627,11 +624,7 @@ def _dot(tr, args, kwargs):
     tr.fail([Const("shapes ("), a.length, Const(",) and ("), b.length,
              Const(",) not aligned")], ValueError)
     tr.emit("}")
-    total = tr.out.declare("double", "dot")
-    tr.emit(f"{total} = 0.0;")
-    with tr.counting(a.length) as k:
-        tr.emit(f"{total} += {a.data}[{k}] * {b.data}[{k}];")
-    return Scalar("double", total)
+    return tr.fold(a.length, "dot", "0.0", lambda k, it: f"{it} + {a.data}[{k}] * {b.data}[{k}]")
 
 
 def _folded(function):

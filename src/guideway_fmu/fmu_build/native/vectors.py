@@ -71,6 +71,15 @@ class Vectors:
             self.emit(f"{out.data}[{k}] = (double){value.code};")
         return out
 
+    def fold(self, length: Scalar, hint: str, first: str, step) -> Scalar:
+        """A double set to the C expression ``first``, then to ``step(k, it)`` for k = 0 ..
+        length - 1 (a reduction in index order)."""
+        it = self.out.declare("double", hint)
+        self.emit(f"{it} = {first};")
+        with self.counting(length) as k:
+            self.emit(f"{it} = {step(k, it)};")
+        return Scalar("double", it)
+
     def vector_reduce(self, vector: Vector, is_all: bool) -> Scalar:
         result = self.out.declare("bool", "all" if is_all else "any")
         self.emit(f"{result} = {1 if is_all else 0};")
