@@ -147,3 +147,24 @@ def test_bad_carriage_input_is_refused_naming_it(make, name):
 def test_limiting_case_a_load_without_equilibrium_is_refused_naming_it(load, message):
     with pytest.raises(ValueError, match=message):
         hertz_balls().equilibrium(load)
+
+
+def test_rigid_direction_stretches_no_ball_and_is_the_stiffness_null_space_hand_calculation():
+    positions = bc.ball_positions(PER_ROW, PITCH)
+    directions = bc.contact_directions(BODY, positions)
+    rigid = bc.rigid_direction(BODY)
+    np.testing.assert_allclose(bc.approach_change(directions, rigid), 0.0, atol=1e-18)
+    stiffness = bc.stiffness_matrix(directions, np.concatenate([TABLE2[2.90], TABLE2[2.90]]))
+    values, vectors = np.linalg.eigh(stiffness)
+    assert values[0] < 1e-9 * values[-1]  # one rigid mode, and it is this direction
+    np.testing.assert_allclose(abs(vectors[:, 0] @ rigid), 1.0, rtol=1e-9)
+
+
+def test_linear_springs_balance_a_load_as_the_linear_solve_limiting_case():
+    model = bc.BallCarriageModel(BODY, PER_ROW, PITCH, ball_stiffness=TABLE2[1.45])
+    inputs = dict(F_y=0.0, F_z=-40.0, M_x=0.0, M_y=1.2, M_z=-0.3, u_feed=0.0, preload=0.0)
+    q = np.array(model.initial_state(0.0, inputs)[:5])
+    stiffness = bc.stiffness_matrix(bc.contact_directions(BODY, bc.ball_positions(PER_ROW, PITCH)),
+                                    model.linear)
+    expected = np.linalg.lstsq(stiffness, model.load(inputs), rcond=None)[0]  # minimum norm
+    np.testing.assert_allclose(q, expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
