@@ -483,7 +483,7 @@ class Expressions:
                 if condition is not None:
                     self.emit("}")
             return
-        if isinstance(part, Vector):  # written as a 1-D array of known length is (tuple_repr)
+        if isinstance(part, Vector):  # as tuple_repr writes a 1-D array of known length
             self.emit('gw_msg_text(ctx, "array([");')
             with self.counting(part.length) as k:
                 self.emit(f'if ({k}) gw_msg_text(ctx, ", ");')

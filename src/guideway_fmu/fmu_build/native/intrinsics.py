@@ -517,17 +517,13 @@ def _repeat(whole: bool):
 def _solve(tr, args, kwargs):
     """np.linalg.solve(a, b) of an n x n matrix and an n-vector known in size (gw_solve);
     LinAlgError("Singular matrix") as numpy raises it."""
-    a, b = (_asarray(tr, [v], {}) for v in args)
-    n = len(b.items) if isinstance(b, Array) else -1
-    if kwargs or n < 1 or not (isinstance(a, Array) and len(a.items) == n and all(
-            isinstance(row, Array) and len(row.items) == n for row in a.items)):
-        raise tr.error("np.linalg.solve is translated for an n x n matrix and an n-vector of "
-                       "known size only")
-    matrix, rhs = tr.out.declare("double", "matrix", n * n), tr.out.declare("double", "rhs", n)
-    for i, row in enumerate(a.items):
-        for j, item in enumerate(row.items):
-            tr.emit(f"{matrix}[{i * n + j}] = {tr.scalar(item).code};")
-        tr.emit(f"{rhs}[{i}] = {tr.scalar(b.items[i]).code};")
+    b = _asarray(tr, [args[1]], {})
+    if kwargs or not isinstance(b, Array) or not b.items:
+        raise tr.error("np.linalg.solve is translated for an n-vector of known size only")
+    n = len(b.items)
+    matrix, rhs = _matrix(tr, args[0], n, "np.linalg.solve"), tr.out.declare("double", "rhs", n)
+    for i, item in enumerate(b.items):
+        tr.emit(f"{rhs}[{i}] = {tr.scalar(item).code};")
     tr.emit(f"if (gw_solve({n}L, {matrix}, {rhs})) {{")
     tr.fail([Const("Singular matrix")], np.linalg.LinAlgError)
     tr.emit("}")
