@@ -80,9 +80,10 @@ reference integrates two smooth states with LSODA (1.1-1.7 s, 1.8-2.3 s with the
 step costs its 8 FMI calls, the carriage's two RK4 substeps and the master's bookkeeping, about
 40 us: 2 s over the cycle at the 4 us record interval. `zhang2019_feed_unit_milling` has no
 states: the reference integrates nothing and evaluates the same algebraic models (the feed
-unit's equilibrium, about 0.75 ms) at the same 10 001 times as the co-simulation, which can only
-add its calls and bookkeeping (about 50 us a step, 7 %). In both the ratio measures the FMUs'
-call overhead, not the coupling; the criterion for them is the master's and the calls' cost per
+unit's equilibrium, about 0.5 ms in Python) at the same 10 001 times as the co-simulation, which
+with the python edition can only add its calls and bookkeeping; the native edition computes the
+equilibrium in C (about 0.13 ms). In both the python edition's ratio measures the FMUs' call
+overhead, not the coupling; the criterion for them is the master's and the calls' cost per
 communication point (the last columns), set against the components' own computation.
 """
 
