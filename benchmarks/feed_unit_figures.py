@@ -50,7 +50,7 @@ def _release(case: fa.FeedUnitCase) -> tuple[float, float]:
     n = case.layout.balls_per_row
     hand = 8 * n * 2**1.5 * case.preload * np.sin(case.layout.contact_angle)
     unit = case.unit(False)
-    lower = unit.points[:, 2] < 0
+    lower = unit.z < 0
 
     def slack(force):
         return unit.equilibrium((0.0, -force, 0.0, 0.0, 0.0)).approaches[lower].max()
