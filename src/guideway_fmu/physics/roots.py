@@ -4,6 +4,12 @@
 MAX_ITERATIONS; where it cannot answer it raises an error that says what was being solved for
 and at which input, which a component passes on to its FMU log unchanged (an FMU must never
 compute without end inside one FMI call, nor report a solver's bare message).
+
+:func:`newton_system` is Newton's method on a small system with its analytic Jacobian, bounded
+in iterations, and :func:`load_steps` applies a load in ever finer steps where a direct solve
+misses: the equilibria of the ball guides (feed unit, carriage), which track a root from step to
+step and need no more than Newton's method from a near start. Both report the error left and
+let the caller word the failure.
 """
 from __future__ import annotations
 

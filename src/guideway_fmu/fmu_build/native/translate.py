@@ -161,9 +161,9 @@ def _libraries() -> tuple[str, ...]:
 def translatable(cls: type) -> bool:
     """Whether objects of ``cls`` are translated: classes of this package or of other source
     outside the installed libraries (a user's model), not those of libraries."""
-    module = sys.modules.get(cls.__module__)
-    path = getattr(module, "__file__", None)
-    return cls.__module__.split(".")[0] == PACKAGE or (
+    name = getattr(cls, "__module__", None) or ""  # None for a function made by exec
+    path = getattr(sys.modules.get(name), "__file__", None)
+    return name.split(".")[0] == PACKAGE or (
         path is not None and not path.startswith(_libraries()))
 
 

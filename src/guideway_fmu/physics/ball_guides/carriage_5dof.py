@@ -73,6 +73,11 @@ class CarriageBody:
         checks.finite("d", self.d)
         checks.finite("e", self.e)
 
+    @property
+    def arm(self) -> float:
+        """d cos(beta) + e sin(beta) [m]: the roll's lever on a ball's approach (eq. A3)."""
+        return self.d * np.cos(self.contact_angle) + self.e * np.sin(self.contact_angle)
+
     def mass_matrix(self) -> np.ndarray:
         """diag(m, m, J_x, J_y, J_z)."""
         return np.diag([self.mass, self.mass, *self.inertia])
@@ -92,8 +97,7 @@ def contact_directions(body: CarriageBody, positions) -> tuple:
     """G's five columns (DOF order), each an array over the balls, row 1 then row 2: a ball's
     approach grows by sum_j G_j q_j (eq. A3)."""
     l = np.asarray(positions, dtype=float)
-    c, s = np.cos(body.contact_angle), np.sin(body.contact_angle)
-    arm = body.d * c + body.e * s
+    c, s, arm = np.cos(body.contact_angle), np.sin(body.contact_angle), body.arm
     one = np.ones_like(l)
     return (np.concatenate([c * one, -c * one]), np.concatenate([-s * one, -s * one]),
             np.concatenate([-arm * one, arm * one]), np.concatenate([l * s, l * s]),
@@ -119,8 +123,7 @@ def stiffness_matrix(directions, ball_stiffness) -> np.ndarray:
 def rigid_direction(body: CarriageBody) -> np.ndarray:
     """The unit displacement that stretches no ball of either row: the lateral shift with the
     roll about the crossing point of the rows' contact lines (omega_20 = 0, eq. A13)."""
-    c, s = np.cos(body.contact_angle), np.sin(body.contact_angle)
-    arm = body.d * c + body.e * s
+    c, arm = np.cos(body.contact_angle), body.arm
     return np.array([arm, 0.0, c, 0.0, 0.0]) / np.hypot(arm, c)
 
 
@@ -128,27 +131,28 @@ def balanced(body: CarriageBody, directions, loads, stiffness, rest, external) -
     """q where balls of normal load ``loads(q)`` [N] (each ball's ``rest`` at q = 0) and tangent
     stiffness ``stiffness(q)`` [N/m] along ``directions`` balance ``external`` (F_y, F_z, M_x,
     M_y, M_z): Newton's method from the unloaded carriage, in load steps where it does not
-    converge, to 1e-9 of the load or the largest rest load. The rigid direction (no ball resists it) is held at 0:
-    a stiffness along it in the Jacobian keeps every step off it. ValueError if the load drives
-    that direction, or if the balls cannot carry it."""
+    converge, to 1e-9 of the load or the largest rest load. The rigid direction (no ball resists
+    it) is held at 0: a stiffness along it in the Jacobian keeps every step off it. ValueError
+    if the load drives that direction, or if the balls cannot carry it."""
     f = checks.finite("load", external)
-    if not np.all(stiffness(np.zeros(5)) > 0.0):
+    at_rest = stiffness(np.zeros(5))
+    if not np.all(at_rest > 0.0):
         raise ValueError("preload must be > 0 for the start in static equilibrium (unpreloaded "
                          "balls have no stiffness at rest)")
     rigid = rigid_direction(body)
-    scale = max(float(np.max(np.abs(f))), float(np.max(rest)))
-    if abs(float(np.sum(rigid * f))) > 1e-9 * scale:
+    tolerance = 1e-9 * max(float(np.max(np.abs(f))), float(np.max(rest)))
+    if abs(float(np.sum(rigid * f))) > tolerance:
         raise ValueError(f"the load {f.tolist()} (F_y, F_z, M_x, M_y, M_z) drives the motion "
                          f"no ball resists (lateral shift with roll); balance it")
-    hold = np.trace(stiffness_matrix(directions, stiffness(np.zeros(5)))) * np.outer(rigid, rigid)
+    hold = np.trace(stiffness_matrix(directions, at_rest)) * np.outer(rigid, rigid)
 
     def solve(load, start):
         return newton_system(lambda q: load - generalized(directions, loads(q) - rest),
                              lambda q: -stiffness_matrix(directions, stiffness(q)) - hold,
-                             start, 1e-9 * scale, NEWTON_ITERATIONS)
+                             start, tolerance, NEWTON_ITERATIONS)
 
-    q, error = load_steps(solve, f, np.zeros(5), 1e-9 * scale, FINEST_LOAD_STEPS)
-    if not error <= 1e-9 * scale:  # NaN: not converged either
+    q, error = load_steps(solve, f, np.zeros(5), tolerance, FINEST_LOAD_STEPS)
+    if not error <= tolerance:  # NaN: not converged either
         raise ValueError(f"no static equilibrium under the load {f.tolist()} (F_y, F_z, M_x, "
                          f"M_y, M_z): more than the balls can carry")
     return q
@@ -191,7 +195,7 @@ def paper_frequencies(body: CarriageBody, positions, row_stiffness) -> dict:
     l, k = np.asarray(positions, dtype=float), np.asarray(row_stiffness, dtype=float)
     c, s = np.cos(body.contact_angle), np.sin(body.contact_angle)
     m, (jx, jy, jz) = body.mass, body.inertia
-    arm = body.d * c + body.e * s
+    arm = body.arm
     c21, c22, c23 = (np.sum(k * 2 * c**2), np.sum(k * -2 * c * arm), np.sum(k * 2 * arm**2))
     c24, c25, c26 = np.sum(k * 2 * l * c**2), np.sum(k * 2 * l**2 * c**2), np.sum(k * -2 * l * c * arm)
     c27, c28, c29 = np.sum(k * 2 * s**2), np.sum(k * -2 * l * s**2), np.sum(k * 2 * l**2 * s**2)
