@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.signal import butter, lfilter, savgol_coeffs, sosfiltfilt
 
-from guideway_fmu.diagnose import decide, locate, second_truth, truth
+from guideway_fmu.diagnose import decide, locate, scoring, second_truth, truth
 from guideway_fmu.diagnose.candidates import RUNNING_DISTANCE_EFFECTS, Context, PreloadLoss
 from guideway_fmu.diagnose.run_io import load_run
 from guideway_fmu.diagnose.signals import ORDER
@@ -91,7 +91,7 @@ def test_large_gap_repeating_with_the_motion_nothing_explains_is_unknown_with_a_
     named = decide.decide(coherent_gap_run)
     assert named.cross_gap > decide.UNRESOLVED
     assert named.effect == "unknown" and named.equation
-    assert all(score < decide.SCORE_MIN or f.effect == "position_dependent_friction"
+    assert all(score < scoring.SCORE_MIN or f.effect == "position_dependent_friction"
                for score, f, _ in named.ranked)
 
 
@@ -123,7 +123,7 @@ def test_position_table_gives_way_only_on_single_pass_records_and_in_a_tie(back_
                      preload_loss=400.0)
     index, twins = decide._same_path_choice(ctx, np.ones(t.size, bool), ranked)
     assert ranked[index][1].effect == chosen
-    tie = not back_and_forth and abs(ball_score - 1000.0) < decide.SCORE_MIN
+    tie = not back_and_forth and abs(ball_score - 1000.0) < scoring.SCORE_MIN
     assert twins == (["position_dependent_friction"] if tie else [])
 
 
@@ -144,7 +144,7 @@ def test_single_pass_ball_run_is_read_along_the_running_distance_never_the_posit
     scores = {f.effect: s for s, f, _ in named.ranked}
     tables = [scores[e] for e in ("position_dependent_friction", "ball_to_ball_contact",
                                   "preload_loss")]
-    assert max(tables) - min(tables) < 2 * decide.SCORE_MIN
+    assert max(tables) - min(tables) < 2 * scoring.SCORE_MIN
     assert named.effect in RUNNING_DISTANCE_EFFECTS
 
 
@@ -165,7 +165,7 @@ def test_a_richer_model_ahead_by_less_than_score_min_independent_samples_gives_w
     # samples: the nested candidate is named
     ranked = _ranked(ball_to_ball_contact=16371.0, preload_loss=16291.0)
     assert ranked[decide._nested_choice(ranked, 0)][1].effect == "ball_to_ball_contact"
-    assert ranked[decide._nested_choice(ranked, 0, 11 * decide.SCORE_MIN)][1].effect == "preload_loss"
+    assert ranked[decide._nested_choice(ranked, 0, 11 * scoring.SCORE_MIN)][1].effect == "preload_loss"
 
 
 @pytest.mark.parametrize("pole", [0.0, 0.5, 0.8])

@@ -49,6 +49,7 @@ class Context:
     velocity_tolerance: float  # m/s, of the regularised sign
     normal_load: float  # N, total load the Coulomb coefficient refers to
     elements: int  # rolling elements per row (1 without [guideway])
+    mass: float  # kg, the baseline's moving mass: the stated one, or as the record corrects it
     sign: np.ndarray = field(init=False)
     distance: np.ndarray = field(init=False)
     path: tuple = field(init=False)  # (position [m] along Motion.path, the samples' indices)
@@ -64,13 +65,17 @@ class Context:
                                     if "normal_force" in self.run.columns else (None, None))
 
     @classmethod
-    def of(cls, run: MeasuredRun, motion: Motion) -> "Context":
+    def of(cls, run: MeasuredRun, motion: Motion, mass: float | None = None) -> "Context":
+        """The context of ``run`` driven by ``motion``, its baseline's moving mass ``mass`` [kg]
+        (None: the stated one)."""
         guideway = run.sections.get("guideway", {})
         load = run.normal_load()
-        fixed = run.moving_mass * motion.a if run.channel == "drive_force" else np.zeros_like(motion.a)
+        mass = run.moving_mass if mass is None else float(mass)
+        fixed = mass * motion.a if run.channel == "drive_force" else np.zeros_like(motion.a)
         limit = np.max(np.abs(motion.v)) * SIGN_WIDTH
         return cls(run, motion, np.asarray(run.columns[run.channel], dtype=float), fixed,
-                   float(limit), float(max(load, 1.0)), int(guideway.get("elements_per_row", 1)))
+                   float(limit), float(max(load, 1.0)), int(guideway.get("elements_per_row", 1)),
+                   mass)
 
     def coulomb_parameters(self, level: float) -> dict:
         """FrictionCoulomb-interface parameters giving the Coulomb level ``level`` [N]."""
@@ -95,6 +100,9 @@ class Fit:
     rig_mass: float
     offset: float
     uses_position: bool  # the friction FMU takes the feed position x
+    #: setting keys whose fitted value lies at an end of the search that is not a physical limit,
+    #: after the search was widened once: key -> the end [the key's unit]
+    at_bound: dict = field(default_factory=dict)
 
 
 def with_offset(columns):
@@ -135,6 +143,14 @@ class Candidate:
     #: SCORE_MIN of it (the data do not need the richer model)
     nests: tuple = ()
     continuous: tuple = ()  # setting keys refined between grid values after the grid search
+    #: ends of the continuous keys' search that are physical limits, not search bounds:
+    #: (key, "low" or "high") pairs (a fit there is not reported as at a bound)
+    physical_ends: tuple = ()
+    #: factor the search's open ends move out by where a fit lies at one (settings read it)
+    WIDER = 10.0
+
+    def __init__(self, reach: float = 1.0):
+        self.reach = reach  # 1, or WIDER once the search was widened
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -166,7 +182,7 @@ class Candidate:
         return self._coulomb(ctx, coef[0])
 
     def rig_mass(self, ctx: Context, coef: np.ndarray) -> float:
-        return ctx.run.moving_mass
+        return ctx.mass
 
     def interpret(self, ctx: Context, fit: "Fit") -> dict:
         """Physical parameters of a fit too costly to compute for every fold (a model run along
@@ -228,9 +244,32 @@ class Candidate:
         whose grid misses its optimum must not lose to another's grid point)."""
         return None
 
+    def at_bound(self, grid: list[dict], setting: dict) -> dict:
+        """Keys of ``setting`` at an end of their values over ``grid`` that is not one of
+        ``physical_ends``: key -> the end."""
+        out = {}
+        for key in self.continuous:
+            values = [g[key] for g in grid if key in g]
+            if key not in setting or len(set(values)) < 2:
+                continue
+            for end, value in (("low", min(values)), ("high", max(values))):
+                if (key, end) not in self.physical_ends and np.isclose(setting[key], value,
+                                                                        rtol=1e-6, atol=0.0):
+                    out[key] = float(value)
+        return out
+
     def fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
         """Best setting by BIC on the fit samples (grid, then ``continuous`` keys refined, per
-        :meth:`family`); None if every setting is unphysical."""
+        :meth:`family`); None if every setting is unphysical. A best setting at an open end of
+        the search (:meth:`at_bound`) is sought again over a search WIDER at its open ends; a
+        fit still there says so in Fit.at_bound."""
+        fitted = self._fit(ctx, fit_mask)
+        if fitted is not None and fitted.at_bound and self.reach == 1.0:
+            wider = type(self)(self.WIDER)._fit(ctx, fit_mask)
+            return wider if wider is not None else fitted
+        return fitted
+
+    def _fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
         grid = self.settings(ctx)
         bests = {}
         for setting in grid:
@@ -251,7 +290,7 @@ class Candidate:
         k = self.dof(coef, setting)
         return Fit(self.effect, setting, coef, ctx.fixed + design @ coef, k, params,
                    self.fmu_name, fmu_params, self.rig_mass(ctx, coef), float(coef[-1]),
-                   self.uses_position)
+                   self.uses_position, self.at_bound(grid, setting))
 
 
 class Lubrication(Candidate):
@@ -263,9 +302,10 @@ class Lubrication(Candidate):
 
     def settings(self, ctx):
         vmax = float(np.max(np.abs(ctx.motion.v)))
+        wider = np.log10(self.reach)
         return [{"stribeck_velocity": float(vs), "stribeck_exponent": d, "viscous_exponent": b}
-                for vs in vmax * np.logspace(-2.5, 0.0, 12) for d in (0.7, 1.0, 2.0)
-                for b in (0.5, 0.75, 1.0)]
+                for vs in vmax * np.logspace(-2.5 - wider, wider, 12 + int(round(8.8 * wider)))
+                for d in (0.7, 1.0, 2.0) for b in (0.5, 0.75, 1.0)]
 
     def columns(self, ctx, setting):
         v, tol = ctx.motion.v, ctx.velocity_tolerance
@@ -294,6 +334,9 @@ class PreslidingHysteresis(Candidate):
     law = staticmethod(friction_laws.dahl_friction)
     continuous = ("presliding_distance", "second_distance", "third_distance")
     keys = continuous
+    #: the least distance is the rigid limit (a switch within a sample), and a build-up over a
+    #: whole stroke is the longest a record can show
+    physical_ends = tuple((k, "low") for k in keys)
     _states: tuple = ()
     _grams: tuple = ()
 
@@ -303,13 +346,16 @@ class PreslidingHysteresis(Candidate):
     def distances(self, ctx):
         """12 pre-sliding distances [m]: 11 geometric, from a thousandth of the median motion
         per sample (a distance of a few encoder counts still shows in the samples right after a
-        reversal) to a tenth of the stroke, and a thousandth of the least of them, a rigid
+        reversal) to a tenth of the stroke (13 to the whole stroke in a widened search: a
+        build-up longer than a stroke is what no record can show), and a thousandth of the least of them, a rigid
         element: it switches within the first sample that moves at all, as the Coulomb part of
         friction does where a rig starts from a dwell at a few nm per sample."""
         step = np.median(np.abs(np.diff(ctx.motion.x)))
         stroke = np.ptp(ctx.motion.x)
         lowest = max(1e-3 * step, 1e-7 * stroke, 1e-10)
-        return np.r_[1e-3 * lowest, np.geomspace(lowest, max(0.1 * stroke, 1e-8), 11)]
+        highest = max(min(0.1 * self.reach, 1.0) * stroke, 1e-8)
+        count = 11 if self.reach == 1.0 else 13  # a widened search adds about the grid's ratio
+        return np.r_[1e-3 * lowest, np.geomspace(lowest, highest, count)]
 
     def settings(self, ctx):
         d = self.distances(ctx)
@@ -438,13 +484,13 @@ class UnmodeledMass(Candidate):
         return np.column_stack([super().columns(ctx, setting)[:, 0], ctx.motion.a])
 
     def physical(self, ctx, setting, coef):
-        if ctx.run.moving_mass + coef[1] < 0.0:
-            return None
+        if coef[1] <= 0.0:  # no missing effect takes inertia away: a stated mass too large is
+            return None  # a baseline error (decide.corrected_mass)
         params, fmu = self._coulomb(ctx, float(coef[0])) or (None, None)
         return None if params is None else ({**params, "extra_mass": float(coef[1])}, fmu)
 
     def rig_mass(self, ctx, coef):
-        return ctx.run.moving_mass + float(coef[1])
+        return ctx.mass + float(coef[1])
 
 
 class PreloadLoss(Candidate):
@@ -473,10 +519,11 @@ class PreloadLoss(Candidate):
 
     def settings(self, ctx):
         total = max(float(ctx.distance[-1]), 1e-9)
+        wider = np.log10(self.reach)
         return ([{"law": "exponential", "wear_distance": float(total * f)}
-                 for f in np.logspace(-1.5, 1.5, 13)]
+                 for f in np.logspace(-1.5 - wider, 1.5 + wider, 13 + 8 * int(round(wider)))]
                 + [{"law": "wear", "wear_distance": float(total * f)}
-                   for f in np.logspace(-0.3, 1.5, 10)]
+                   for f in np.logspace(-0.3, 1.5 + wider, 10 + 5 * int(round(wider)))]
                 + [{"law": "table", "wear_distance": total, "nodes": k} for k in self.TABLE_NODES])
 
     def columns(self, ctx, setting):

@@ -44,17 +44,15 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import lsq_linear, minimize_scalar
 
-from . import locate, regression
+from . import locate, record_checks, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          PreslidingHysteresis, candidates_for)
 from .run_io import MeasuredRun, load_run
-from .scoring import bic
+from .scoring import (DOUBT, NEAR_NOISE, SCORE_MIN, bic, capped, confidence,
+                      jackknife_intervals, significant_gap)
 from .signals import derive_motion, noise_rms, sampling_step
 
-SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
-SCORE_MIN = 10.0  # held-out BIC improvement a candidate needs to be named
 EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate must explain
-ONE_WAY = 0.02  # least share of the moving samples each direction of motion must have
 LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
 #: a significant gap no candidate or law explains is ``unknown`` above this many times the whole
 #: noise, else ``none``: the errors of the measured inputs (a differenced, quantised motion) alone
@@ -84,18 +82,6 @@ DELAY_SHARE = 0.4
 ODD_KNOTS = 10  # knots of the delay search's free friction curve over the speed (besides 0)
 #: knots of its friction level over the running distance
 LEVEL_KNOTS = 6
-
-
-def _confidence(scores: dict, chosen: str) -> float:
-    """Posterior weight of ``chosen`` among the baseline ("none", score 0) and the candidates,
-    exp((score - SCORE_MIN) / 2) normalised (BIC approximation of the model evidence, with the
-    naming margin SCORE_MIN as the prior odds against an extension)."""
-    values = np.array([v - (SCORE_MIN if k != "none" else 0.0) for k, v in scores.items()])
-    weights = np.exp((values - values.max()) / 2.0)
-    weights /= weights.sum()
-    if chosen == "unknown":  # no named model holds: the weight of the best one is what is doubted
-        return float(1.0 - weights.max()) if len(weights) > 1 else 0.0
-    return float(dict(zip(scores, weights))[chosen])
 
 
 def _same_path_choice(ctx: Context, usable: np.ndarray, ranked: list) -> tuple[int, list[str]]:
@@ -167,6 +153,11 @@ class Naming:
     #: number of parameters: what a shift the delay search left open is judged by
     best_residual: np.ndarray
     best_parameters: int
+    #: baseline parameters the record contradicts, refitted first (:func:`corrected_mass`)
+    corrections: list
+    intervals: dict  # parameter of the named effect -> [low, high] (scoring.LEVEL)
+    baseline_intervals: dict  # parameter of the baseline -> [low, high]
+    doubts: list  # why the confidence was held at scoring.DOUBT (plain sentences)
 
 
 def motion_of(run: MeasuredRun, delay: float = 0.0):
@@ -269,7 +260,9 @@ def _passive_friction(ctx: Context, usable):
 def decide(run_dir) -> Naming:
     """Load, calibrate, locate and name (steps 1-4) without co-simulating. Raises
     FileNotFoundError or ValueError (one message naming the file and the row, column, section
-    or key) for a run that cannot be used."""
+    or key) for a run that cannot be used, the motion's checks (record_checks.py: one way only,
+    sampled too slowly for its strokes, a position of a handful of levels) included; their
+    warnings join the run's."""
     run = load_run(run_dir)
     source = run.path / "rig.toml"
     if run.kind != "horizontal_drive":
@@ -281,8 +274,10 @@ def decide(run_dir) -> Naming:
                          f"baseline; {run.model['friction']!r} is not supported as a baseline yet")
     motion = motion_of(run)
     run.orient_friction(motion.v)
+    usable = _splits(run, motion)[0]
+    run.warnings.extend(record_checks.check(run, motion, usable))
     ctx = Context.of(run, motion)
-    shift, taken = channel_delay(ctx, _splits(run, motion)[0])
+    shift, taken = channel_delay(ctx, usable)
     still = None if taken else _name(ctx)
     if not shift or (still is not None and shift < 0.0):  # a force leading the motion by less
         return still  # than the rules ask is what damped pre-sliding (LuGre's sigma_1) shows
@@ -306,22 +301,10 @@ def _rms(values, mask) -> float:
     return float(np.sqrt(np.mean(values[mask] ** 2)))
 
 
-def significant_gap(gap, noise, n) -> bool:
-    """Whether an RMS ``gap`` over ``n`` samples exceeds ``noise`` by SIGNIFICANT_ERRORS
-    standard errors (the RMS of n white-noise samples has a relative one of 1 / sqrt(2 n))."""
-    return bool(gap > (1.0 + SIGNIFICANT_ERRORS / np.sqrt(2.0 * n)) * noise)
-
-
 def _splits(run: MeasuredRun, motion) -> tuple[np.ndarray, list]:
-    """(usable samples, locate.folds) of ``motion``; ValueError naming data.csv where the feed
-    moves one way only or too few samples have a clear direction."""
+    """(usable samples, locate.folds) of ``motion``; ValueError naming data.csv where too few
+    samples have a clear direction."""
     usable = ~motion.standstill & ~motion.ends
-    forward, backward = int(np.sum(usable & (motion.v > 0))), int(np.sum(usable & (motion.v < 0)))
-    if min(forward, backward) < ONE_WAY * usable.sum():
-        raise ValueError(f"{run.path / 'data.csv'}: the feed moves one way only ({forward} samples "
-                         f"forward, {backward} backward): the Coulomb level and the force offset "
-                         f"cannot be told apart; record strokes in both directions (each at least "
-                         f"{ONE_WAY:.0%} of the moving samples)")
     splits = locate.folds(run.time.size, usable)
     if min(splits[0][1].sum(), splits[0][0].sum()) < 20:
         raise ValueError(f"{run.path / 'data.csv'}: only {int(usable.sum())} samples with a clear "
@@ -329,8 +312,57 @@ def _splits(run: MeasuredRun, motion) -> tuple[np.ndarray, list]:
     return usable, splits
 
 
-def _name(ctx: Context) -> Naming:
-    """Steps 2-4 of :func:`decide` on the motion of ``ctx``."""
+def _out_of_fold(splits, predictions) -> np.ndarray:
+    """Each held-out sample of ``splits`` from the prediction of the model fitted without it."""
+    pooled = np.zeros_like(predictions[0])
+    for (_, h), prediction in zip(splits, predictions):
+        pooled[h] = prediction[h]
+    return pooled
+
+
+def corrected_mass(ctx: Context, splits, usable, best: float) -> dict | None:
+    """The moving mass [kg] a drive-force record shows where it contradicts the stated one
+    downward (baseline_corrections of docs/measured-run.md: {"parameter", "stated", "fitted",
+    "interval"}), else None. The baseline refitted with the mass free (its Coulomb level, m a and
+    the offset) is scored against the stated one as a candidate is (the out-of-fold BIC gain),
+    and its mass is taken where it scores above SCORE_MIN and above ``best``, the best
+    candidate's score (the mass is then the record's main discrepancy: a gap of another effect
+    correlated with the acceleration moves a free mass too), and lies below the stated one with
+    the whole interval (scoring.jackknife_intervals): no missing effect takes inertia away, so a
+    smaller mass is a wrong baseline parameter, never an effect, while a larger one is the
+    candidate unmodeled_mass. ValueError naming rig.toml where even the refitted mass is not positive:
+    the force and the acceleration disagree in sign or unit."""
+    run, y = ctx.run, ctx.y
+    if run.channel != "drive_force" or ctx.mass <= 0.0:
+        return None
+    design = np.column_stack([BASELINE.coulomb_column(ctx, ctx.motion.v), ctx.motion.a,
+                              np.ones(y.size)])
+    target = y - ctx.fixed
+    free = [np.linalg.lstsq(design[f], target[f], rcond=None)[0] for f, _ in splits]
+    stated = [np.linalg.lstsq(design[f][:, ::2], target[f], rcond=None)[0] for f, _ in splits]
+    n = int(usable.sum())
+    score = (bic(float(np.sum((target - _out_of_fold(splits, [design[:, ::2] @ c
+                                                             for c in stated]))[usable] ** 2)), n, 2)
+             - bic(float(np.sum((target - _out_of_fold(splits, [design @ c for c in free]))
+                                [usable] ** 2)), n, 3))
+    masses = [{"mass": ctx.mass + float(c[1])} for c in free]
+    fitted = masses[0]["mass"]
+    low, high = jackknife_intervals(masses, {"mass": fitted})["mass"]
+    if score <= max(SCORE_MIN, best) or high >= ctx.mass:
+        return None
+    if fitted <= 0.0:
+        raise ValueError(f"{run.path / 'rig.toml'}: [rig] key 'moving_mass': the drive force "
+                         f"shows a mass of {fitted:.4g} kg ({low:.4g} to {high:.4g}), not the "
+                         f"stated {ctx.mass:.4g} kg nor any positive one: '{run.channel}' and "
+                         f"the acceleration disagree in sign or unit")
+    return {"parameter": "moving_mass", "stated": ctx.mass, "fitted": fitted,
+            "interval": [low, high], "score": score}
+
+
+def _name(ctx: Context, correction: dict | None = None) -> Naming:
+    """Steps 2-4 of :func:`decide` on the motion of ``ctx``; where the record contradicts the
+    baseline's moving mass (:func:`corrected_mass`), again on the corrected baseline, the
+    ``correction`` reported."""
     run, motion = ctx.run, ctx.motion
     usable, splits = _splits(run, motion)
     fit_mask, held = splits[0]
@@ -345,17 +377,14 @@ def _name(ctx: Context) -> Naming:
                              f"along its own positive axis")
         return fitted
 
-    def out_of_fold(predictions):  # each usable sample from the model fitted without it
-        pooled = np.zeros_like(y)
-        for (_, h), prediction in zip(splits, predictions):
-            pooled[h] = prediction[h]
-        return pooled
+    def out_of_fold(predictions):
+        return _out_of_fold(splits, predictions)
 
     bases = [calibrated(f) for f, _ in splits]
     baseline = bases[0]
     residual = y - baseline.prediction
     # the white floor, with the noise the acceleration derived from a noisy channel brings
-    carried = run.moving_mass * (motion.how["feed_acceleration"].output_noise or 0.0)
+    carried = ctx.mass * (motion.how["feed_acceleration"].output_noise or 0.0)
     noise = float(np.hypot(locate.noise_floor(y, residual, held), carried / np.ptp(y[held])))
     gap_base = locate.gap(y, baseline.prediction, held)
     white = locate.whiteness(residual, held)
@@ -374,7 +403,7 @@ def _name(ctx: Context) -> Naming:
         return bic(float(np.sum((y - prediction)[usable] ** 2)), n_usable, parameters)
 
     bic_base = held_out_bic(base_cv, baseline.n_parameters)
-    ranked, cv_gaps = [], {}
+    ranked, cv_gaps, folds_of = [], {}, {}
     best_residual, best_parameters, best_score = y - base_cv, baseline.n_parameters, 0.0
     for candidate in candidates_for(run):
         fitted = [candidate.fit(ctx, f) for f, _ in splits]
@@ -384,10 +413,15 @@ def _name(ctx: Context) -> Naming:
         score = bic_base - held_out_bic(prediction, fitted[0].n_parameters)
         ranked.append((score, fitted[0], locate.gap(y, fitted[0].prediction, held)))
         cv_gaps[candidate.effect] = locate.gap(y, prediction, usable)
+        folds_of[candidate.effect] = [f.parameters for f in fitted]
         if score > best_score:
             best_residual, best_parameters, best_score = (y - prediction,
                                                           fitted[0].n_parameters, score)
     ranked.sort(key=lambda item: -item[0])
+    if correction is None:
+        found = corrected_mass(ctx, splits, usable, ranked[0][0] if ranked else 0.0)
+        if found is not None:
+            return _name(Context.of(run, motion, found["fitted"]), found)
 
     def share(gap_model, gap=gap_cv):  # of the gap's excess variance over the noise
         return (gap**2 - gap_model**2) / max(gap**2 - noise_cv**2, 1e-300)
@@ -447,7 +481,20 @@ def _name(ctx: Context) -> Naming:
     twins = twins if winner is not None else []
     for twin in twins:  # the record holds no evidence between them: they share the pair's best
         scores[twin] = scores[effect] = max(scores[twin], scores[effect])
+    stated, doubts = confidence(scores, effect), []
+    if winner is not None:
+        if capped(stated, gap_base, floor) < stated:
+            doubts.append(f"the gap before any fit is {gap_base / floor:.3g} noise floors, within "
+                          f"{NEAR_NOISE:g} of it: as likely noise of another colour as an effect")
+        for key, end in winner.at_bound.items():
+            doubts.append(f"{key} = {end:.4g} lies at the end of its search, widened once: the "
+                          f"record does not fix it")
+        stated = min(stated, DOUBT) if doubts else stated
+    intervals = (jackknife_intervals(folds_of[winner.effect], winner.parameters)
+                 if winner is not None else {})
     return Naming(run, ctx, fit_mask, held, usable, baseline, floor, noise, gap_base,
                   gap_cv / noise_cv,
                   white, significant, where, ranked, foreign_score, effect, winner, equation,
-                  values, _confidence(scores, effect), twins, best_residual, best_parameters)
+                  values, stated, twins, best_residual, best_parameters,
+                  [correction] if correction is not None else [], intervals,
+                  jackknife_intervals([b.parameters for b in bases], baseline.parameters), doubts)

@@ -102,7 +102,9 @@ def _force_scale(run, source) -> list[str]:
     force = float(np.quantile(np.abs(run.columns["friction_force"]), TOP))
     load = run.normal_load()
     if load <= 0.0:
-        return []
+        return [f"{source}: the normal load adds up to {load:.3g} N (rig.toml: preload, "
+                f"moving_mass x g, normal force): friction is not checked against it, and the "
+                f"friction coefficients reported are per newton of a nominal 1 N load"]
     ratio = force / load
     said = (f"{source}: column 'friction_force' reaches {force:.3g} N, {ratio:.3g} times the "
             f"normal load of {load:.3g} N (rig.toml: preload, moving_mass x g, normal force)")

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..output import pages
-from . import locate, plots
+from . import locate, plots, scoring
 from .candidates import CANDIDATES
 from .decide import Naming
 from .realise import Realisation
@@ -63,10 +63,29 @@ def write_fit(path: Path, time, measured, baseline, augmented) -> Path:
     return path
 
 
+def answer_kind(diagnosis: dict) -> str:
+    """The kind of answer of ``diagnosis`` in words: a missing effect, a wrong baseline
+    parameter, both, no discrepancy beyond noise, or a gap no effect explains."""
+    effect, corrected = diagnosis["missing_effect"], bool(diagnosis["baseline_corrections"])
+    said = {"none": "no discrepancy beyond the noise", "unknown": "a gap no candidate effect "
+            "explains"}.get(effect, "a missing effect")
+    if corrected:
+        return ("a baseline parameter is wrong" if effect == "none"
+                else f"a baseline parameter is wrong, and {said} after its correction")
+    return said
+
+
 def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> Path:
     """report.html: the verdict, the numbers, how they were obtained and the plots, inline."""
     d = diagnosis
-    verdict = [("missing effect", d["missing_effect"]), ("confidence", plain(round(d["confidence"], 4))),
+    verdict = [("answer", answer_kind(d)),
+               *((f"baseline {c['parameter']}", f"stated {c['stated']:.6g}, the record shows "
+                  f"{c['fitted']:.6g} ({c['interval'][0]:.6g} to {c['interval'][1]:.6g}); "
+                  f"refitted before any effect was looked for")
+                 for c in d["baseline_corrections"]),
+               ("missing effect", d["missing_effect"]), ("confidence", plain(round(d["confidence"], 4))),
+               *((f"{k} ({scoring.LEVEL:.0%} interval)", f"{lo:.6g} to {hi:.6g}")
+                 for k, (lo, hi) in d["intervals"].items()),
                ("compared channel", d["channel"]), ("gap before (baseline)", plain(round(d["gap_before"], 6))),
                ("gap after", plain(round(d["gap_after"], 6))), ("noise floor", plain(round(d["noise_floor"], 6))),
                ("proposed equation for the residual", d["equation"] or "-")]
@@ -167,6 +186,10 @@ def diagnosis_record(naming, realised) -> dict:
                                        for k, v in f.parameters.items()}}
                        for s, f, g in naming.ranked],
         "equation": naming.equation,
+        "baseline_corrections": [{k: c[k] for k in ("parameter", "stated", "fitted", "interval")}
+                                 for c in naming.corrections],
+        "intervals": naming.intervals,
+        "warnings": list(naming.run.warnings),
     }
 
 
@@ -230,6 +253,11 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
                                             f"replay too)" if run.channel_delay
                                             else "none found")},
         "Warnings": {str(i + 1): w for i, w in enumerate(run.warnings)} or {"-": "none"},
+        "Confidence held at the doubt level": {str(i + 1): w for i, w in enumerate(nm.doubts)}
+                                              or {"-": "no"},
+        "Baseline intervals": {f"{k} ({scoring.LEVEL:.0%}, jackknife over the folds)":
+                               f"{lo:.6g} to {hi:.6g}"
+                               for k, (lo, hi) in nm.baseline_intervals.items()},
         "Timing": {"diagnose wall time [s]": f"{seconds:.2f}"},
     }}
 
@@ -289,6 +317,8 @@ def write_vertical_report(out: Path, naming, realised, seconds: float) -> dict:
                           "residual peaks [Hz]": ", ".join(f"{f:.4g}" for f in nm.frequencies) or "-",
                           "equation (unknown only)": nm.equation or "-"},
         "Warnings": {str(i + 1): w for i, w in enumerate(nm.run.warnings)} or {"-": "none"},
+        "Confidence held at the doubt level": {str(i + 1): w for i, w in enumerate(nm.doubts)}
+                                              or {"-": "no"},
         "Timing": {"diagnose wall time [s]": f"{seconds:.2f}"},
     }}
     write_html(out / "report.html", diagnosis, notes, images)

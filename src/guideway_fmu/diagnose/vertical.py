@@ -72,11 +72,10 @@ from ..physics.roller_guide.roller_law import EXPONENT, MICRON, palmgren_stiffne
 from ..reference.vertical import FusedVertical
 from ..scenarios import vertical_rig
 from . import locate, regression
-from .decide import (EXPLAINED, LAW_EXPLAINED, SCORE_MIN, UNRESOLVED, _confidence,
-                     significant_gap)
+from .decide import EXPLAINED, LAW_EXPLAINED, UNRESOLVED
 from .realise import write_replay
 from .run_io import REDUCED_MODULUS, MeasuredRun
-from .scoring import bic
+from .scoring import DOUBT, NEAR_NOISE, SCORE_MIN, bic, capped, confidence, significant_gap
 from .signals import channel_noise, denoise_spectrum, derive_motion
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
@@ -488,6 +487,9 @@ class VerticalNaming:
     confidence: float
     frequencies: list
     not_told_apart: list  # effects that explain the record as well as the named one
+    doubts: list  # why the confidence was held at scoring.DOUBT (plain sentences)
+    corrections: list = dataclasses.field(default_factory=list)  # none refitted yet
+    intervals: dict = dataclasses.field(default_factory=dict)  # not computed yet
 
 
 def law_terms(rig: VerticalRig, frequencies) -> dict:
@@ -557,9 +559,13 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     twins = _not_told_apart(ranked, winner, y, held, share) if winner is not None else []
     for twin in twins:  # the record holds no evidence between them: they share the best score
         scores[twin] = scores[effect]
+    stated = confidence(scores, effect)
+    doubts = ([f"the gap before any fit is {gap_base / noise:.3g} noise floors, within "
+               f"{NEAR_NOISE:g} of it: as likely noise of another colour as an effect"]
+              if winner is not None and capped(stated, gap_base, noise) < stated else [])
     return VerticalNaming(run, rig, y, fit_mask, held, baseline, noise, gap_base, significant,
-                          ranked, effect, winner, equation, _confidence(scores, effect),
-                          frequencies, twins)
+                          ranked, effect, winner, equation, min(stated, DOUBT) if doubts else stated,
+                          frequencies, twins, doubts)
 
 
 def _not_told_apart(ranked, winner, y, held, share) -> list[str]:
