@@ -3,7 +3,7 @@
     python benchmarks/diagnose_accuracy.py [--draws 5] [--noise 0.015] [--samples 10000]
                                            [--jobs 2] [--out out/diagnose_accuracy] [--no-emps]
 
-For every effect of diagnose/truth.py and ``draws`` seeds, writes a run, diagnoses it (each in
+For every effect of guideway_synthetic/truth.py and ``draws`` seeds, writes a run, diagnoses it (each in
 its own process) and prints the confusion table (expected answer x named effect), the held-out
 gap after the named effect over the noise floor, the wall time of each diagnosis (10,000 samples
 by default) and, unless --no-emps, the results on the two EMPS records.
@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from guideway_fmu.diagnose import truth
-from guideway_fmu.diagnose.trials import run_batch
+from guideway_synthetic import truth
+from guideway_synthetic.trials import run_batch
 
 
 

@@ -3,10 +3,10 @@
     python benchmarks/diagnose_memory.py [--rows 100000 1000000] [--seed 3]
                                          [--page docs/diagnose-memory.md]
 
-Each record is a first-generator horizontal run (diagnose/truth.py, pre-sliding hysteresis
+Each record is a first-generator horizontal run (guideway_synthetic/truth.py, pre-sliding hysteresis
 hidden, 1 kHz, seed SEED; 3 draws a ball guide, the worst case: its ball-to-ball candidate's
 table has the most nodes) of the given number of rows. Each diagnosis runs in a child process
-(``python -m guideway_fmu.cli diagnose``, diagnose.trials.diagnose_in_child) whose own peak
+(``python -m guideway_fmu.cli diagnose``, guideway_synthetic.trials.diagnose_in_child) whose own peak
 resident set size is read when it ends. The FMUs are built once beforehand (not measured).
 Prints, per record, the peak RSS [GB = 1e9 bytes], the wall time and the named effect, and
 writes them to the page (--page - writes none).
@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 
 from guideway_fmu.fmu_build.build import build
-from guideway_fmu.diagnose import truth
-from guideway_fmu.diagnose.trials import diagnose_in_child
+from guideway_synthetic import truth
+from guideway_synthetic.trials import diagnose_in_child
 
 import pages
 
@@ -59,7 +59,7 @@ def main(argv=None) -> None:
         ["--rows", *map(str, args.rows), "--seed", str(args.seed)])
     lines = [
         "# Peak memory of diagnose on long records", "",
-        f"First-generator horizontal records (`diagnose/truth.py`, `{EFFECT}` hidden, 1 kHz, "
+        f"First-generator horizontal records (`guideway_synthetic/truth.py`, `{EFFECT}` hidden, 1 kHz, "
         f"seed {args.seed}; seed 3 draws a ball guide, whose ball-to-ball candidate has the "
         f"largest table); each `guideway-fmu diagnose` runs in a child process whose peak "
         f"resident set size (RSS) is read when it ends. Target: under {TARGET:g} GB at 1e6 "

@@ -4,7 +4,7 @@ harder conditions real rigs give (steps 1-4 of the workflow only, no co-simulati
     python benchmarks/diagnose_naming.py [--draws 24] [--samples 4000] [--jobs 2] [--seed 1000]
                                          [--page docs/diagnosis.md]
 
-Draw i of each effect of diagnose/truth.py: seed SEED + i, effect size 1, 1/2, 1/3 of a clearly
+Draw i of each effect of guideway_synthetic/truth.py: seed SEED + i, effect size 1, 1/2, 1/3 of a clearly
 visible one (i mod 3), noise 0.5, 1.0, 1.5 % of the range ((i div 3) mod 3), uneven sampling on
 odd i. Prints every wrong answer with its gap and the leading candidates' held-out scores (or
 why the workflow refused the record), then the share named right per expected answer, and
@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from guideway_fmu.diagnose import truth
+from guideway_synthetic import truth
 from guideway_fmu.diagnose.decide import decide
 
 import pages
@@ -85,7 +85,7 @@ def write_page(path: Path, command: str, args, rows, right: int, hidden: int, wr
     """The naming figures as a Markdown page."""
     lines = [
         "# How often the discrepancy workflow names the hidden effect", "",
-        f"Synthetic runs of `diagnose/truth.py`, {args.draws} draws per hidden effect of "
+        f"Synthetic runs of `guideway_synthetic/truth.py`, {args.draws} draws per hidden effect of "
         f"{args.samples} samples from seed {args.seed} on; effect size 1, 1/2 or 1/3 of a clearly "
         f"visible one, noise 0.5, 1.0 or 1.5 % of the force range, every other draw unevenly "
         f"sampled. The truth laws differ in form from the candidates' laws. Steps 1-4 only "

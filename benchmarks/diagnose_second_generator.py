@@ -1,5 +1,5 @@
 """How often the discrepancy workflow names the hidden effect on records of the second,
-independent generator (diagnose/second_truth.py), by effect and by record class, on seeds it was
+independent generator (guideway_synthetic/second_truth.py), by effect and by record class, on seeds it was
 never tuned on (steps 1-4 only, no co-simulation).
 
     python benchmarks/diagnose_second_generator.py [--draws 4] [--samples 4000] [--jobs 2]
@@ -21,7 +21,7 @@ from collections import Counter, defaultdict
 from multiprocessing import Pool
 from pathlib import Path
 
-from guideway_fmu.diagnose import second_truth
+from guideway_synthetic import second_truth
 from guideway_fmu.diagnose.decide import decide
 
 import pages
@@ -102,7 +102,7 @@ def main(argv=None) -> None:
     command = (f"python benchmarks/diagnose_second_generator.py --draws {args.draws} "
                f"--samples {args.samples} --seed {args.seed}{subset}")
     lines = ["# The workflow on the second generator's records", "",
-             "Records of `diagnose/second_truth.py`, a generator written from the format and the "
+             "Records of `guideway_synthetic/second_truth.py`, a generator written from the format and the "
              "friction literature without reading the first one, on seeds the workflow was never "
              f"tuned on: {args.draws} draws per allowed pair of effect and record class, "
              f"{args.samples} samples each, the effect's visible part 8 times the noise. Steps "

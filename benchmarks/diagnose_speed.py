@@ -4,8 +4,8 @@ diagnose.workflow.diagnose) against the issue's targets, on a horizontal and a v
     python benchmarks/diagnose_speed.py [--horizontal presliding_hysteresis] [--seed 1]
                                         [--vertical unmodeled_mass] [--vertical-seed 1]
 
-(i) a first-generator horizontal record (diagnose/truth.py) of HORIZONTAL_SAMPLES samples,
-target HORIZONTAL_TARGET; (ii) a first-generator vertical record (diagnose/truth_vertical.py)
+(i) a first-generator horizontal record (guideway_synthetic/truth.py) of HORIZONTAL_SAMPLES samples,
+target HORIZONTAL_TARGET; (ii) a first-generator vertical record (guideway_synthetic/truth_vertical.py)
 of VERTICAL_DURATION at VERTICAL_RATE (20,000 samples), target VERTICAL_TARGET. The FMUs are
 built once into a temporary folder beforehand (not timed). Prints, per record, the named
 effect against the hidden one, the wall time of diagnose split into its decision and its
@@ -22,7 +22,8 @@ from pathlib import Path
 import numpy as np
 
 from guideway_fmu.fmu_build.build import build
-from guideway_fmu.diagnose import truth, truth_vertical, workflow
+from guideway_fmu.diagnose import workflow
+from guideway_synthetic import truth, truth_vertical
 
 # the targets
 HORIZONTAL_SAMPLES, HORIZONTAL_TARGET = 10_000, 15.0  # samples, s
@@ -70,10 +71,10 @@ def report(label: str, expected: str, diagnosis: dict, wall: float, spent: dict,
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--horizontal", default="presliding_hysteresis",
-                        help="effect hidden in the horizontal record (diagnose/truth.py)")
+                        help="effect hidden in the horizontal record (guideway_synthetic/truth.py)")
     parser.add_argument("--seed", type=int, default=1, help="seed of the horizontal record")
     parser.add_argument("--vertical", default="unmodeled_mass",
-                        help="effect hidden in the vertical record (diagnose/truth_vertical.py)")
+                        help="effect hidden in the vertical record (guideway_synthetic/truth_vertical.py)")
     parser.add_argument("--vertical-seed", type=int, default=1)
     args = parser.parse_args(argv)
     warnings.simplefilter("ignore")

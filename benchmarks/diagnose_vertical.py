@@ -5,9 +5,9 @@ generators, on seeds never used in development.
     python benchmarks/diagnose_vertical.py [--draws 2] [--seed 70000] [--jobs 1]
         [--duration 0.05] [--rate 1e5] [--samples 5000] [--page docs/diagnosis-vertical.md]
 
-Generators: ``first`` is diagnose/truth_vertical.py (make_run, the workflow's own fused model;
+Generators: ``first`` is guideway_synthetic/truth_vertical.py (make_run, the workflow's own fused model;
 ``--duration`` s at ``--rate`` Hz, draw i reads vertical_displacement for even i and
-vertical_acceleration for odd i); ``second`` is diagnose/second_truth_vertical.py (draw, an
+vertical_acceleration for odd i); ``second`` is guideway_synthetic/second_truth_vertical.py (draw, an
 independent plant; ``--samples`` samples, size 1: the visible effect 8 times the noise; it draws
 its own rate, channel, feed, load and noise). For every effect of each generator, ``--draws``
 records from seed SEED + i. Seeds used by the generators' tests and in development: first
@@ -46,19 +46,19 @@ CHANNELS = ("vertical_displacement", "vertical_acceleration")
 
 
 def effects(generator: str) -> dict:
-    from guideway_fmu.diagnose import second_truth_vertical, truth_vertical
+    from guideway_synthetic import second_truth_vertical, truth_vertical
     return (truth_vertical if generator == "first" else second_truth_vertical).EFFECTS
 
 
 def _generate(job: dict, run: Path):
     """Write the record; (expected answer, channel)."""
     if job["generator"] == "first":
-        from guideway_fmu.diagnose import truth_vertical
+        from guideway_synthetic import truth_vertical
         info = truth_vertical.make_run(run, job["effect"], np.random.default_rng(job["seed"]),
                                        job["fmus"], duration=job["duration"], rate=job["rate"],
                                        channel=CHANNELS[job["draw"] % 2])
     else:
-        from guideway_fmu.diagnose import second_truth_vertical
+        from guideway_synthetic import second_truth_vertical
         info = second_truth_vertical.draw(run, job["effect"], job["seed"],
                                           n_samples=job["samples"])
     return info.expected, info.channel
@@ -224,9 +224,9 @@ def main(argv=None) -> None:
                f"--jobs {args.jobs}")
     lines = ["# The vertical workflow on both vertical generators", "",
              f"Wall time {wall / 60:.1f} min on two shared cores.", "",
-             "Records of `diagnose/truth_vertical.py` (the first generator, from the workflow's "
+             "Records of `guideway_synthetic/truth_vertical.py` (the first generator, from the workflow's "
              f"own fused model; {args.duration:g} s at {args.rate / 1e3:g} kHz, displacement on "
-             "even draws, acceleration on odd ones) and of `diagnose/second_truth_vertical.py` "
+             "even draws, acceleration on odd ones) and of `guideway_synthetic/second_truth_vertical.py` "
              f"(the independent one; {args.samples} samples, its own rate and channel, the "
              f"visible effect 8 times the noise), {args.draws} draws per effect from seed "
              f"{args.seed}, diagnosed end to end (`diagnose.workflow.diagnose`). The gaps are "

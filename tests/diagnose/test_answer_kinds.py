@@ -8,7 +8,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from guideway_fmu.diagnose import decide, scoring, truth
+from guideway_fmu.diagnose import decide, scoring
+from guideway_synthetic import truth
 from guideway_fmu.diagnose.candidates import Lubrication, PreslidingHysteresis
 
 

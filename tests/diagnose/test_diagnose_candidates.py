@@ -7,7 +7,8 @@ from types import SimpleNamespace
 import pytest
 
 from guideway_fmu.components import registry
-from guideway_fmu.diagnose import candidates, truth
+from guideway_fmu.diagnose import candidates
+from guideway_synthetic import truth
 from guideway_fmu.physics.rigs import friction_laws
 from guideway_fmu.physics.roller_guide import friction
 

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from scipy.signal import butter, lfilter, savgol_coeffs, sosfiltfilt
 
-from guideway_fmu.diagnose import decide, locate, scoring, second_truth, truth
+from guideway_fmu.diagnose import decide, locate, scoring
+from guideway_synthetic import second_truth, truth
 from guideway_fmu.diagnose.candidates import RUNNING_DISTANCE_EFFECTS, Context, PreloadLoss
 from guideway_fmu.diagnose.run_io import load_run
 from guideway_fmu.diagnose.signals import ORDER

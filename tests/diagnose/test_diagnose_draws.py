@@ -1,4 +1,4 @@
-"""Every hidden effect of diagnose/truth.py over five random draws that vary what real rigs vary
+"""Every hidden effect of guideway_synthetic/truth.py over five random draws that vary what real rigs vary
 (effect size down to a third of a clearly visible one, noise 0.5-1.5 % of the range, uneven
 sampling, 4000 samples). One child process per effect (each co-simulates), two at a time.
 
@@ -18,8 +18,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
-from guideway_fmu.diagnose import truth
-from guideway_fmu.diagnose.trials import run_batch
+from guideway_synthetic import truth
+from guideway_synthetic.trials import run_batch
 
 # end-to-end, two child processes at a time co-simulating (their own cores: runs alone)
 pytestmark = [pytest.mark.slow, pytest.mark.serial]

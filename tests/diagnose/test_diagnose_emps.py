@@ -70,7 +70,7 @@ def test_cli_diagnose_bad_run_exits_2_naming_file_and_row(tmp_path):
 
 
 def test_cli_diagnose_out_that_is_a_file_exits_2(tmp_path):
-    from guideway_fmu.diagnose import truth
+    from guideway_synthetic import truth
 
     truth.write_example(tmp_path / "run")
     taken = tmp_path / "taken"

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from guideway_fmu.diagnose import truth
-from guideway_fmu.diagnose.trials import diagnose_in_child
+from guideway_synthetic import truth
+from guideway_synthetic.trials import diagnose_in_child
 
 # minutes: a million samples decided and co-simulated. Not serial: the peak is the child's own
 # (os.wait4), which other processes do not change, and it takes one core like any test

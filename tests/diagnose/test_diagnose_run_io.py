@@ -140,7 +140,7 @@ def test_replay_from_csv_refusal_names_row_and_column(tmp_path):
 def _friction_record(tmp_path, name, sign, stated):
     """A pre-sliding run turned into a friction_force record (moving mass 0): the drive force
     less m a, times ``sign`` (-1: opposing the motion), with friction_sign stated or not."""
-    from guideway_fmu.diagnose import truth
+    from guideway_synthetic import truth
     run = truth.simulate("presliding_hysteresis", np.random.default_rng(11), noise=0.005,
                          n_samples=3000)
     mass = run.info.parameters["moving_mass"]
@@ -191,7 +191,7 @@ def test_bad_friction_sign_is_refused_naming_the_key(tmp_path, edit, message):
 
 
 def test_friction_sign_without_a_friction_channel_is_refused(tmp_path):
-    from guideway_fmu.diagnose import truth
+    from guideway_synthetic import truth
     path = truth.write_run(tmp_path / "run", truth.simulate("none", np.random.default_rng(3),
                                                            n_samples=1000))
     text = (path / "rig.toml").read_text().replace(
@@ -214,7 +214,7 @@ def test_a_file_that_is_not_utf8_names_its_line_and_byte(tmp_path, name):
 # -- units: refused where they cannot be SI, warned about where unusual --------------------------
 def _scaled_record(tmp_path, scale: dict, **knobs):
     """A first-generator record with the columns of ``scale`` multiplied by their factors."""
-    from guideway_fmu.diagnose import truth
+    from guideway_synthetic import truth
     run = truth.simulate("none", np.random.default_rng(5), n_samples=2000, **knobs)
     columns = {k: v * scale.get(k, 1.0) for k, v in run.columns.items()}
     return truth.write_run(tmp_path / "run", replace(run, columns=columns))

@@ -103,7 +103,8 @@ def test_acceleration_from_position_beats_the_rigs_channel_against_true_motion()
     # seed 1003, jittered time stamps, 0.5 % force noise: the rig's double centred difference
     # over +-3 samples lowers the ramps; the order-7 derivative of the counts, at the window the
     # workflow's tolerance gives, errs by less than half as much
-    from guideway_fmu.diagnose import decide, truth
+    from guideway_fmu.diagnose import decide
+    from guideway_synthetic import truth
     from guideway_fmu.diagnose.run_io import load_run
 
     run = truth.simulate("none", np.random.default_rng(1003), noise=0.005, uneven=True,
@@ -125,7 +126,7 @@ def test_acceleration_gain_undoes_the_attenuation_of_short_ramps_against_true_mo
     # samples lowers those pulses by 9 %. Without the position the gain refers to a short
     # derivative of the velocity channel, itself a centred difference, so it undoes only part;
     # with the position but no tolerance, to the position's short second derivative
-    from guideway_fmu.diagnose import truth
+    from guideway_synthetic import truth
 
     run = truth.simulate("none", np.random.default_rng(7066), noise=0.015, n_samples=4000)
     true, moving = run.truth["acceleration"], run.truth["moving"]
@@ -149,7 +150,8 @@ def test_acceleration_gain_undoes_the_attenuation_of_short_ramps_against_true_mo
 def test_dequantised_counts_lie_closer_to_the_true_position_than_the_counts():
     # seed 1000, 1 um encoder: the counts err by the rounding noise q / sqrt(12) = 0.29 um; the
     # order-7 filter at the acceleration's window takes most of it out (measured 0.11 um)
-    from guideway_fmu.diagnose import decide, truth
+    from guideway_fmu.diagnose import decide
+    from guideway_synthetic import truth
     from guideway_fmu.diagnose.run_io import load_run
 
     run = truth.simulate("none", np.random.default_rng(1000), noise=0.005, n_samples=4000)

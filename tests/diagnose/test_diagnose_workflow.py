@@ -1,4 +1,4 @@
-"""The discrepancy workflow end to end on synthetic runs with hidden effects (diagnose/truth.py):
+"""The discrepancy workflow end to end on synthetic runs with hidden effects (guideway_synthetic/truth.py):
 the named effect, diagnosis.json and fit.csv exactly as docs/measured-run.md says,
 the report, and the refusals. The diagnoses run in one child process (each co-simulates)."""
 from __future__ import annotations
@@ -10,7 +10,7 @@ import re
 import numpy as np
 import pytest
 
-from guideway_fmu.diagnose.trials import run_batch
+from guideway_synthetic.trials import run_batch
 from guideway_fmu.diagnose.workflow import diagnose
 
 pytestmark = pytest.mark.slow  # end-to-end: co-simulation in a subprocess

@@ -1,4 +1,4 @@
-"""The second, independent generator of synthetic measured runs (diagnose/second_truth.py):
+"""The second, independent generator of synthetic measured runs (guideway_synthetic/second_truth.py):
 format, determinism, and physics checked against closed-form results."""
 import math
 import re
@@ -7,7 +7,7 @@ import warnings
 import numpy as np
 import pytest
 
-from guideway_fmu.diagnose import second_truth as st
+from guideway_synthetic import second_truth as st
 from guideway_fmu.diagnose.run_io import load_run
 
 N = 2000  # samples per record in these tests (draw's default is 10000)

@@ -1,5 +1,5 @@
 """The second, independent generator of vertical measured runs
-(diagnose/second_truth_vertical.py): each test names the independent check it makes."""
+(guideway_synthetic/second_truth_vertical.py): each test names the independent check it makes."""
 import math
 import re
 import warnings
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from guideway_fmu.diagnose import second_truth_vertical as sv
+from guideway_synthetic import second_truth_vertical as sv
 from guideway_fmu.diagnose.run_io import load_run
 
 N = 600  # samples per record in these tests (draws for the workflow have 5,000-20,000)

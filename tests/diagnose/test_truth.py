@@ -1,5 +1,5 @@
 """Checks of the truth-model generator: files per the measured-run spec, effect sizes, noise,
-encoder quantisation and the truth equations (diagnose/truth.py)."""
+encoder quantisation and the truth equations (guideway_synthetic/truth.py)."""
 import json
 import re
 import tomllib
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from guideway_fmu.diagnose import truth
+from guideway_synthetic import truth
 
 VOCABULARY = {"feed_position", "feed_velocity", "feed_acceleration", "drive_force",
               "friction_force", "normal_force", "vertical_displacement", "vertical_acceleration"}

@@ -11,7 +11,8 @@ import pytest
 
 from guideway_fmu import scenarios
 from guideway_fmu.cosim.system import Builder
-from guideway_fmu.diagnose import truth_vertical, vertical
+from guideway_fmu.diagnose import vertical
+from guideway_synthetic import truth_vertical
 from guideway_fmu.diagnose.run_io import load_run
 from guideway_fmu.diagnose.vertical import VerticalRig, decide_vertical
 from guideway_fmu.physics.rigs import force_table

@@ -152,8 +152,8 @@ def _diagnosis(out: Path, option: tuple, diagnosis: dict) -> list[str]:
     folder = out / "diagnose_example"
     body = _section(
         "Diagnosis of a measured run",
-        "A bundled measured run of the horizontal rig with a hidden effect (written by "
-        "guideway_fmu.diagnose.truth.write_example into diagnose_example/run): the workflow "
+        "The bundled measured run of the horizontal rig with a hidden effect "
+        "(guideway_fmu/examples/measured_run, copied into diagnose_example/run): the workflow "
         "calibrates a baseline model, ranks candidate effects on held-out samples and names the "
         "missing one. The full report, with how every number was obtained, is "
         "diagnose_example/report.html.",

@@ -87,8 +87,8 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 from scipy.optimize import brentq
 
-from ..physics.papers import soleimanian2020
-from .candidates import CANDIDATES
+from guideway_fmu.physics.papers import soleimanian2020
+from guideway_fmu.diagnose.candidates import CANDIDATES
 
 __all__ = [
     "EFFECTS", "EXPECTED", "VISIBLE_FRACTION", "TruthInfo", "SyntheticRun",

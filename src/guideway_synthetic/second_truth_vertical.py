@@ -94,7 +94,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from guideway_fmu.diagnose.second_truth import (DWELL, FORMAT, NOISE_COLOURS, VISIBLE_PER_SIZE,
+from .second_truth import (DWELL, FORMAT, NOISE_COLOURS, VISIBLE_PER_SIZE,
                                                 _is_int, _is_real, _log_uniform, _move, _rms,
                                                 _schedule_motion, _sine_motion, _stream,
                                                 _toml_value, _unit_noise, _write_csv)

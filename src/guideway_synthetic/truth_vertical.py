@@ -31,10 +31,10 @@ from pathlib import Path
 import numpy as np
 from scipy.signal import lfilter
 
-from ..physics.papers import soleimanian2020
-from ..physics.roller_guide.film import LineContact
-from .run_io import FORMAT, load_run
-from .vertical import VerticalRig
+from guideway_fmu.physics.papers import soleimanian2020
+from guideway_fmu.physics.roller_guide.film import LineContact
+from guideway_fmu.diagnose.run_io import FORMAT, load_run
+from guideway_fmu.diagnose.vertical import VerticalRig
 
 EFFECTS = {"none": "none", "lubricant_film": "lubricant_film", "preload_loss": "preload_loss",
            "unmodeled_mass": "unmodeled_mass", "structural_mode": "unknown"}
@@ -53,7 +53,7 @@ class VerticalTruth:
 
 def _rig_toml(path: Path, mass, guideway, contact, channel) -> None:
     rows = [f'format = "{FORMAT}"', "", "[rig]", 'kind = "vertical_response"',
-            'description = "synthetic vertical run (diagnose/truth_vertical.py)"',
+            'description = "synthetic vertical run (guideway_synthetic/truth_vertical.py)"',
             f"moving_mass = {mass!r}", "", "[guideway]", 'type = "roller"']
     rows += [f"{k} = {v!r}" for k, v in guideway.items()]
     rows += ["", "[lubricant]", f"viscosity = {LineContact.viscosity!r}",

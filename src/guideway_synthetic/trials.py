@@ -1,7 +1,7 @@
 """Synthetic trials of the discrepancy workflow: a truth run hiding one effect (truth.py),
 diagnosed end to end, summarised.
 
-    python -m guideway_fmu.diagnose.trials ROOT FMU_DIR TRIALS_JSON
+    python -m guideway_synthetic.trials ROOT FMU_DIR TRIALS_JSON
 
 runs a list of trials (``[{"name", "effect", "seed", **truth knobs}]``) in one process and
 prints their summaries as one JSON list on the last line. Each diagnosis co-simulates through
@@ -20,9 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..cosim.interrupts import exit_without_finalising
+from guideway_fmu.cosim.interrupts import exit_without_finalising
 from . import truth
-from .workflow import diagnose
+from guideway_fmu.diagnose.workflow import diagnose
 
 
 def trial(root, fmu_dir, name: str, effect: str, seed: int, **knobs) -> dict:

@@ -100,7 +100,7 @@ from typing import Callable
 import numpy as np
 from scipy.signal import lfilter
 
-from .run_io import REDUCED_MODULUS
+from guideway_fmu.diagnose.run_io import REDUCED_MODULUS
 
 #: hidden effect -> the answer the workflow should give
 EFFECTS = {
