@@ -44,8 +44,13 @@ def test_diagnosis_json_follows_spec(results):
     text = (root / "presliding_out" / "diagnosis.json").read_text()
     d = json.loads(text)
     assert list(d) == ["format", "missing_effect", "confidence", "channel", "gap_before",
-                       "gap_after", "noise_floor", "candidates", "equation"]
+                       "gap_after", "noise_floor", "candidates", "equation",
+                       "baseline_corrections", "intervals", "warnings"]
     assert d["format"] == "guideway-diagnosis/1" and d["channel"] == "drive_force"
+    assert d["baseline_corrections"] == [] and all(isinstance(w, str) for w in d["warnings"])
+    named = next(c["parameters"] for c in d["candidates"] if c["effect"] == d["missing_effect"])
+    for key, (low, high) in d["intervals"].items():
+        assert low <= named[key] <= high
     assert 0.0 <= d["confidence"] <= 1.0 and d["equation"] is None
     for c in d["candidates"]:
         assert list(c) == ["effect", "gap_after", "score", "parameters"]
@@ -124,6 +129,6 @@ def test_one_way_record_is_refused_naming_the_file(results, tmp_path):
         data["feed_acceleration"] = np.gradient(np.abs(data["feed_velocity"]), data["time"])
     np.savetxt(run / "data.csv", np.column_stack([data[n] for n in names]), delimiter=",",
                header=",".join(names), comments="", fmt="%.9g")
-    with pytest.raises(ValueError, match=r"data.csv: the feed moves one way only \(\d+ samples "
-                                         r"forward, 0 backward\)"):
+    with pytest.raises(ValueError, match=r"data.csv: the feed moves one way only \([\d.]+ m "
+                                         r"forward, 0 m backward by the distance travelled"):
         diagnose(run, tmp_path / "out")

@@ -97,7 +97,8 @@ def test_vertical_workflow_names_the_hidden_effect_of_first_generator_records(
     assert diagnosis["missing_effect"] == info.expected
     d = json.loads((tmp_path / "out" / "diagnosis.json").read_text())
     assert list(d) == ["format", "missing_effect", "confidence", "channel", "gap_before",
-                       "gap_after", "noise_floor", "candidates", "equation"]
+                       "gap_after", "noise_floor", "candidates", "equation",
+                       "baseline_corrections", "intervals", "warnings"]
     if info.expected != "unknown":  # the gap closes (on 0.03 s records not yet to the noise:
         # the free vibration's frequency is resolved to about 1 %, its phase needs less)
         assert d["gap_after"] < 0.6 * d["gap_before"] and d["gap_before"] > 3 * d["noise_floor"]
