@@ -44,7 +44,10 @@ def draw(job):
         except ValueError as refusal:
             return {**row, "named": "refused", "why": str(refusal)[-200:]}
     gap = next((g for _, f, g in named.ranked if f.effect == named.effect), named.gap_base)
-    return {**row, "named": named.effect, "gap_over_noise": round(gap / named.noise, 3),
+    return {**row, "named": named.effect, "confidence": round(named.confidence, 4),
+            "weight": named.weight,
+            "gap_before_over_noise": round(named.gap_base / named.noise, 3),
+            "gap_over_noise": round(gap / named.noise, 3),
             "leading": [(f.effect, round(float(s), 1)) for s, f, _ in named.ranked[:3]]}
 
 

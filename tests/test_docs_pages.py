@@ -32,6 +32,15 @@ def test_generated_page_is_current(page):
     assert pages.stale(page) is None, pages.stale(page)
 
 
+def test_the_confidence_calibration_table_is_current():
+    # diagnose/calibration.json is counted from the workflow's answers: a change of the rules
+    # makes it stale as it does a page
+    table = __import__("json").loads((PACKAGE / "diagnose" / "calibration.json").read_text())
+    assert table["hash"] == pages.content_hash("benchmarks/diagnose_calibration.py"), (
+        f"src/guideway_fmu/diagnose/calibration.json is stale: rerun `{table['command']}` "
+        f"(and the report: benchmarks/diagnose_calibration.py)")
+
+
 # ------------------------------------------------------------------------ the hashing itself
 
 LAW = '''"""A law."""

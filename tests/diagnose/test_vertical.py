@@ -338,3 +338,37 @@ def test_rivals_within_the_margin_in_independent_samples_are_not_told_apart_ar1_
     twins = vertical._not_told_apart(ranked, winner, y, held,
                                      lambda gap: 1.0 if gap < 0.1 else 0.0)
     assert twins == ([] if told_apart else ["unmodeled_mass"])
+
+
+def test_separating_experiment_parts_a_lost_preload_from_an_added_mass_that_ring_alike(tmp_path):
+    # a lost half of the preload and an added mass tuned (fixed point) to ring at the same
+    # natural frequency at the record's load: the record cannot tell them apart, a second
+    # static load can. Checks: the twins agree at the record's load to 1e-9; the static
+    # response to a small extra load is extra / K (a numerical derivative of the stiffness);
+    # a fit compared with itself is 0 apart; the twins' deflections under the second load part
+    # in about the ratio of their masses (k / m alike: the linear reading, to 5 %), their
+    # frequencies hardly (Palmgren's stiffness grows as the load's 1/9th power)
+    mass = 2.9
+    rig = _rig_at_rest(tmp_path / "run", 4, 20, 45.0, 9200.0, mass, -mass * STANDARD_GRAVITY)
+    lost = dataclasses.replace(rig.base, preload=0.5 * rig.base.preload)
+    target = rig.natural_frequency(lost)
+    heavy = rig.base
+    for _ in range(60):
+        k = gw.quasi_static_stiffness(rig.guideway(heavy), rig.start(heavy), 0.2, False)
+        heavy = dataclasses.replace(heavy, mass=k / (2 * math.pi * target) ** 2)
+    assert rig.natural_frequency(heavy) == pytest.approx(target, rel=1e-9)
+    fits = [vertical.VerticalFit(effect, setting, np.zeros(3), 0.0, {}, 1)
+            for effect, setting in (("preload_loss", lost), ("unmodeled_mass", heavy))]
+    small = vertical.static_response(rig, lost, 1.0)
+    k = gw.quasi_static_stiffness(rig.guideway(lost), rig.start(lost), 0.2, False)
+    assert small["displacement_change"] == pytest.approx(1.0 / k, rel=1e-3)
+    same = vertical.separating_experiment(rig, fits[0], fits[0], 1e-9)
+    assert same["frequency_apart"] == 0.0 and same["displacement_apart_in_noise"] == 0.0
+    apart = vertical.separating_experiment(rig, *fits, 1e-9)
+    assert apart["between"] == ["preload_loss", "unmodeled_mass"]
+    predicted = apart["predictions"]
+    ratio = (predicted["preload_loss"]["displacement_change"]
+             / predicted["unmodeled_mass"]["displacement_change"])
+    assert ratio == pytest.approx(heavy.mass / mass, rel=0.05) and ratio > 1.05
+    assert 0.0 < apart["frequency_apart"] < 0.05 and apart["displacement_apart_in_noise"] > 1.0
+    assert "more normal force" in apart["record"]

@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import lsq_linear, minimize_scalar
 
-from . import locate, record_checks, regression
+from . import calibration, locate, record_checks, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          PreslidingHysteresis, candidates_for)
 from .run_io import MeasuredRun, load_run
@@ -147,6 +147,8 @@ class Naming:
     winner: Fit | None
     equation: str | None
     law: np.ndarray | None
+    #: share of right answers on never-seen draws with this evidence (calibration.py), held at
+    #: scoring.DOUBT where ``doubts`` say why
     confidence: float
     not_told_apart: list  # effects scoring like the named one that the record cannot tell from it
     #: out-of-fold residual of the best-scoring model (a candidate or the baseline) and its
@@ -158,6 +160,10 @@ class Naming:
     intervals: dict  # parameter of the named effect -> [low, high] (scoring.LEVEL)
     baseline_intervals: dict  # parameter of the baseline -> [low, high]
     doubts: list  # why the confidence was held at scoring.DOUBT (plain sentences)
+    #: the answer's raw BIC weight (scoring.confidence), the evidence ``confidence`` is
+    #: calibrated from (calibration.py) with the gap before over the noise floor
+    weight: float
+    experiment: dict | None = None  # the separating experiment: none proposed for horizontal runs yet
 
 
 def motion_of(run: MeasuredRun, delay: float = 0.0):
@@ -481,7 +487,8 @@ def _name(ctx: Context, correction: dict | None = None) -> Naming:
     twins = twins if winner is not None else []
     for twin in twins:  # the record holds no evidence between them: they share the pair's best
         scores[twin] = scores[effect] = max(scores[twin], scores[effect])
-    stated, doubts = confidence(scores, effect), []
+    weight, doubts = confidence(scores, effect), []
+    stated = calibration.confidence(effect, gap_base / floor, weight)
     if winner is not None:
         if capped(stated, gap_base, floor) < stated:
             doubts.append(f"the gap before any fit is {gap_base / floor:.3g} noise floors, within "
@@ -497,4 +504,5 @@ def _name(ctx: Context, correction: dict | None = None) -> Naming:
                   white, significant, where, ranked, foreign_score, effect, winner, equation,
                   values, stated, twins, best_residual, best_parameters,
                   [correction] if correction is not None else [], intervals,
-                  jackknife_intervals([b.parameters for b in bases], baseline.parameters), doubts)
+                  jackknife_intervals([b.parameters for b in bases], baseline.parameters), doubts,
+                  weight)

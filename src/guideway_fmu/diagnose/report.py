@@ -190,6 +190,7 @@ def diagnosis_record(naming, realised) -> dict:
                                  for c in naming.corrections],
         "intervals": naming.intervals,
         "warnings": list(naming.run.warnings),
+        **({"separating_experiment": naming.experiment} if naming.experiment is not None else {}),
     }
 
 
@@ -262,6 +263,19 @@ def _notes(naming: Naming, realised: Realisation, seconds: float) -> dict:
     }}
 
 
+def separating_words(experiment: dict | None) -> str:
+    """The separating experiment in words: the record to make and both candidates' predictions."""
+    if experiment is None:
+        return "-"
+    said = "; ".join(f"{effect}: displacement {1e6 * p['displacement_change']:.4g} um, natural "
+                     f"frequency {p['natural_frequency']:.5g} Hz"
+                     for effect, p in experiment["predictions"].items())
+    apart = experiment["displacement_apart_in_noise"]
+    return (f"record {experiment['record']}. Predicted: {said}; apart by "
+            f"{100 * experiment['frequency_apart']:.3g} % in frequency"
+            + (f" and {apart:.3g} noise floors in displacement" if apart is not None else ""))
+
+
 def write_vertical_report(out: Path, naming, realised, seconds: float) -> dict:
     """diagnosis.json, fit.csv, the plots (time, spectra, ranking) and report.html of a
     vertical run into ``out``; returns the diagnosis."""
@@ -307,8 +321,8 @@ def write_vertical_report(out: Path, naming, realised, seconds: float) -> dict:
                   "augmented": f"{nm.winner.parameters}" if nm.winner else "= baseline",
                   "not told apart from the named effect (explains the record as well, within "
                   "the naming margin in independent samples; stiffness and mass meet in "
-                  "sqrt(k / m): load the guide across its natural frequency to separate them)":
-                      ", ".join(nm.not_told_apart) or "-",
+                  "sqrt(k / m))": ", ".join(nm.not_told_apart) or "-",
+                  "separating experiment": separating_words(nm.experiment),
                   "scenario": f"{realised.scenario.name} (run it with guideway-fmu run)",
                   "co-simulation": f"wall time {realised.wall_time:.2f} s; largest deviation "
                                    f"from the reference {realised.agreement:.3g} of the range"},

@@ -488,6 +488,9 @@ class VerticalNaming:
     frequencies: list
     not_told_apart: list  # effects that explain the record as well as the named one
     doubts: list  # why the confidence was held at scoring.DOUBT (plain sentences)
+    #: where ``not_told_apart`` is not empty, the further record that separates the named effect
+    #: from the first of them (:func:`separating_experiment`), else None
+    experiment: dict | None = None
     corrections: list = dataclasses.field(default_factory=list)  # none refitted yet
     intervals: dict = dataclasses.field(default_factory=dict)  # not computed yet
 
@@ -563,9 +566,58 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     doubts = ([f"the gap before any fit is {gap_base / noise:.3g} noise floors, within "
                f"{NEAR_NOISE:g} of it: as likely noise of another colour as an effect"]
               if winner is not None and capped(stated, gap_base, noise) < stated else [])
+    fits = {f.effect: f for _, f, _ in ranked}
+    experiment = (separating_experiment(rig, winner, fits[twins[0]], noise * float(np.ptp(y)))
+                  if twins else None)
     return VerticalNaming(run, rig, y, fit_mask, held, baseline, noise, gap_base, significant,
                           ranked, effect, winner, equation, min(stated, DOUBT) if doubts else stated,
-                          frequencies, twins, doubts)
+                          frequencies, twins, doubts, experiment)
+
+
+#: least second static load of the separating experiment, over the preload: a load of the
+#: preload's order moves the rows by about as much as the preload did
+EXTRA_LOAD = 0.1
+
+
+def static_response(rig: VerticalRig, setting: Setting, extra: float) -> dict:
+    """What ``setting`` predicts for a static test with ``extra`` [N] more normal force than
+    the record's start: the displacement's change [m] and the natural frequency [Hz] there
+    (sqrt(K / M) / 2 pi, K the rows' quasi-static stiffness, the film's compliance included)."""
+    guideway, u, ehl = rig.guideway(setting), float(rig.motion.v[0]), setting.contact == "ehl"
+    start = rig.start(setting)
+    loaded = gw.static_displacement(guideway, setting.mass * STANDARD_GRAVITY
+                                    + float(rig.normal[0]) + setting.start_force + extra, u, ehl)
+    k = gw.quasi_static_stiffness(guideway, loaded, u, ehl)
+    return {"displacement_change": float(loaded - start),
+            "natural_frequency": float(np.sqrt(k / setting.mass) / (2 * math.pi))}
+
+
+def separating_experiment(rig: VerticalRig, first: VerticalFit, second: VerticalFit,
+                          noise: float) -> dict:
+    """The further record that tells ``first`` from ``second`` apart, two fits the record
+    cannot (they meet in the natural frequency sqrt(k / m) at its load): the same rig at rest
+    under a second static load, the record's static load (its weight and mean normal force)
+    again on top, at least EXTRA_LOAD of the baseline's preload. A static load deflects the
+    rows by about load / k, apart from the mass: twins with k / m alike deflect in the ratio of
+    their masses, while their frequencies part only as far as the rows' stiffness grows with
+    the load (little for Palmgren's rollers). Both fits' predictions for it
+    (:func:`static_response`), and how far apart they are: the displacement change's difference
+    over the record's noise ``noise`` [m; None for an acceleration record] and the natural
+    frequencies' relative difference. ``record`` says it in words."""
+    extra = max(float(abs(first.setting.mass * STANDARD_GRAVITY + np.mean(rig.normal))),
+                EXTRA_LOAD * rig.base.preload)
+    predicted = {f.effect: static_response(rig, f.setting, extra) for f in (first, second)}
+    a, b = predicted[first.effect], predicted[second.effect]
+    return {"between": [first.effect, second.effect],
+            "record": (f"the same rig at rest under {extra:.4g} N more normal force (the record's "
+                       f"static load again on top): its static displacement and the frequency "
+                       f"it rings at when tapped"),
+            "predictions": predicted,
+            "displacement_apart_in_noise": float(abs(a["displacement_change"]
+                                                     - b["displacement_change"]) / noise)
+            if rig.run.channel == "vertical_displacement" and noise > 0.0 else None,
+            "frequency_apart": float(abs(a["natural_frequency"] - b["natural_frequency"])
+                                     / max(a["natural_frequency"], b["natural_frequency"]))}
 
 
 def _not_told_apart(ranked, winner, y, held, share) -> list[str]:
