@@ -45,3 +45,30 @@ def test_every_derivation_of_a_velocity_only_record_is_worded():
     words = {name: report.describe(name, d) for name, d in motion.how.items()}
     assert set(words) == {"feed_velocity", "feed_position", "feed_acceleration"}
     assert words["feed_acceleration"].startswith("derived from feed_velocity")
+
+
+def test_the_three_kinds_of_answer_are_said_apart():
+    mass = [{"parameter": "moving_mass", "stated": 30.0, "fitted": 6.1, "interval": [5.9, 6.3]}]
+    assert report.answer_kind({"missing_effect": "lubrication", "baseline_corrections": []}) == \
+        "a missing effect"
+    assert report.answer_kind({"missing_effect": "none", "baseline_corrections": []}) == \
+        "no discrepancy beyond the noise"
+    assert report.answer_kind({"missing_effect": "none", "baseline_corrections": mass}) == \
+        "a baseline parameter is wrong"
+    assert report.answer_kind({"missing_effect": "presliding_hysteresis",
+                               "baseline_corrections": mass}) == (
+        "a baseline parameter is wrong, and a missing effect after its correction")
+
+
+def test_the_separating_experiment_is_said_with_both_predictions():
+    experiment = {"between": ["preload_loss", "unmodeled_mass"], "record": "the rig under 920 N more",
+                  "predictions": {"preload_loss": {"displacement_change": 2.0e-7,
+                                                   "natural_frequency": 6000.0},
+                                  "unmodeled_mass": {"displacement_change": 1.8e-7,
+                                                     "natural_frequency": 6010.0}},
+                  "displacement_apart_in_noise": 20.0, "frequency_apart": 10.0 / 6010.0}
+    said = report.separating_words(experiment)
+    assert said.startswith("record the rig under 920 N more")
+    assert "preload_loss: displacement 0.2 um" in said and "6010 Hz" in said
+    assert "0.166 % in frequency and 20 noise floors in displacement" in said
+    assert report.separating_words(None) == "-"
