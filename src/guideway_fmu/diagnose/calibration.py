@@ -12,8 +12,10 @@ reliability of the result on other seeds (docs/diagnosis-calibration.md). A bin 
 states 1/2. The raw weight alone is no probability: it is 0 for a ``none`` a candidate's score
 contradicts and for most ``unknown`` answers, which are right nine times in ten.
 
-The counts depend on the workflow's rules: calibration.json records the hash of the code it was
-counted with, and tests/diagnose/test_calibration.py says when it is stale.
+The counts depend on the workflow's rules. The run that counts them writes
+docs/diagnosis-calibration.md too, whose provenance covers the workflow's code and this table:
+tests/test_docs_pages.py says when either changed since (rerun the command the page names).
+calibration.json's "hash" is the code's hash as that run began, the previous table included.
 """
 from __future__ import annotations
 
