@@ -100,3 +100,16 @@ def test_a_build_up_longer_than_a_tenth_of_the_stroke_is_found_by_the_widened_se
     at_end = bool(named.winner.at_bound)  # still at the widened end: said, and doubted
     assert at_end == any("lies at the end of its search" in d for d in named.doubts)
     assert not at_end or named.confidence <= scoring.DOUBT
+
+
+def test_a_force_whose_inertia_runs_against_the_acceleration_is_refused_naming_the_mass(tmp_path):
+    # the drive force's m a written with the wrong sign: the mass-free refit finds about -m, no
+    # positive mass at all; the refusal names rig.toml's moving_mass and the likely cause
+    run = truth.simulate("none", np.random.default_rng(3105), noise=0.005, n_samples=4000)
+    mass = run.info.parameters["moving_mass_true"]
+    columns = {**run.columns, "drive_force": run.columns["drive_force"]
+               - 2.0 * mass * run.truth["acceleration"]}
+    truth.write_run(tmp_path / "run", replace(run, columns=columns))
+    with pytest.raises(ValueError, match=r"rig.toml: \[rig\] key 'moving_mass': the drive force "
+                                         r"shows a mass of -[\d.]+ kg .* disagree in sign or unit"):
+        decide.decide(tmp_path / "run")
