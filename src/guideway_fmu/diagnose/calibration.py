@@ -58,7 +58,7 @@ def confidence(effect: str, gap_ratio: float, weight: float) -> float:
 
 
 def count(rows) -> dict:
-    """{bin: [right, records]} of ``rows`` (dicts with effect named, expected, gap_ratio, weight)."""
+    """{bin: [right, records]} of ``rows`` (dicts: named, expected, gap_ratio, weight)."""
     bins: dict[str, list[int]] = {}
     for row in rows:
         tally = bins.setdefault(bin_of(row["named"], row["gap_ratio"], row["weight"]), [0, 0])

@@ -347,8 +347,8 @@ class PreslidingHysteresis(Candidate):
         """12 pre-sliding distances [m]: 11 geometric, from a thousandth of the median motion
         per sample (a distance of a few encoder counts still shows in the samples right after a
         reversal) to a tenth of the stroke (13 to the whole stroke in a widened search: a
-        build-up longer than a stroke is what no record can show), and a thousandth of the least of them, a rigid
-        element: it switches within the first sample that moves at all, as the Coulomb part of
+        build-up longer than a stroke is what no record can show), and a thousandth of the
+        least of them, a rigid element: it switches within the first sample that moves at all, as the Coulomb part of
         friction does where a rig starts from a dwell at a few nm per sample."""
         step = np.median(np.abs(np.diff(ctx.motion.x)))
         stroke = np.ptp(ctx.motion.x)

@@ -163,7 +163,7 @@ class Naming:
     #: the answer's raw BIC weight (scoring.confidence), the evidence ``confidence`` is
     #: calibrated from (calibration.py) with the gap before over the noise floor
     weight: float
-    experiment: dict | None = None  # the separating experiment: none proposed for horizontal runs yet
+    experiment: dict | None = None  # the separating experiment: none for horizontal runs yet
 
 
 def motion_of(run: MeasuredRun, delay: float = 0.0):
@@ -336,8 +336,8 @@ def corrected_mass(ctx: Context, splits, usable, best: float) -> dict | None:
     correlated with the acceleration moves a free mass too), and lies below the stated one with
     the whole interval (scoring.jackknife_intervals): no missing effect takes inertia away, so a
     smaller mass is a wrong baseline parameter, never an effect, while a larger one is the
-    candidate unmodeled_mass. ValueError naming rig.toml where even the refitted mass is not positive:
-    the force and the acceleration disagree in sign or unit."""
+    candidate unmodeled_mass. ValueError naming rig.toml where even the refitted mass is not
+    positive: the force and the acceleration disagree in sign or unit."""
     run, y = ctx.run, ctx.y
     if run.channel != "drive_force" or ctx.mass <= 0.0:
         return None
@@ -347,8 +347,8 @@ def corrected_mass(ctx: Context, splits, usable, best: float) -> dict | None:
     free = [np.linalg.lstsq(design[f], target[f], rcond=None)[0] for f, _ in splits]
     stated = [np.linalg.lstsq(design[f][:, ::2], target[f], rcond=None)[0] for f, _ in splits]
     n = int(usable.sum())
-    score = (bic(float(np.sum((target - _out_of_fold(splits, [design[:, ::2] @ c
-                                                             for c in stated]))[usable] ** 2)), n, 2)
+    score = (bic(float(np.sum((target - _out_of_fold(
+                 splits, [design[:, ::2] @ c for c in stated]))[usable] ** 2)), n, 2)
              - bic(float(np.sum((target - _out_of_fold(splits, [design @ c for c in free]))
                                 [usable] ** 2)), n, 3))
     masses = [{"mass": ctx.mass + float(c[1])} for c in free]
