@@ -4,11 +4,12 @@ the generator's true values and hand calculations."""
 from __future__ import annotations
 
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
-from guideway_fmu.diagnose import decide, scoring
+from guideway_fmu.diagnose import candidates, decide, scoring
 from guideway_synthetic import truth
 from guideway_fmu.diagnose.candidates import Lubrication, PreslidingHysteresis
 
@@ -72,6 +73,29 @@ def test_a_setting_at_an_open_end_of_its_search_is_reported_a_physical_end_is_no
     assert PreslidingHysteresis().at_bound(grid, dict.fromkeys(keys, 1e-9)) == {}
     assert PreslidingHysteresis().at_bound(grid, dict(zip(keys, (1e-9, 1e-6, 1e-3)))) == {
         "third_distance": 1e-3}
+
+
+@pytest.mark.parametrize("narrow_rss, kept", [(1.0, "narrow"), (4.0, "wider")])
+def test_the_widened_search_keeps_the_better_fit_by_bic_hand_calculation(narrow_rss, kept):
+    # two hand-made fits of the same 100 samples and parameters: the one with the smaller
+    # residual sum of squares has the lower BIC; the first search's fit at its end, kept, is no
+    # longer at a bound (the wider search looked past that end and found nothing better)
+    y, mask = np.zeros(100), np.ones(100, bool)
+
+    def made(rss, at_bound):
+        return candidates.Fit("lubrication", {}, np.zeros(2), np.full(100, np.sqrt(rss / 100)),
+                              3, {}, "FrictionStribeck", {}, 1.0, 0.0, False, at_bound)
+
+    class Made(Lubrication):
+        def _fit(self, ctx, fit_mask):
+            return (made(narrow_rss, {"stribeck_velocity": 1.0}) if self.reach == 1.0
+                    else made(2.0, {}))
+
+    assert made(1.0, {}).bic(y, mask) == pytest.approx(100 * np.log(0.01) + 3 * np.log(100))
+    fitted = Made().fit(SimpleNamespace(y=y), mask)
+    assert np.mean(fitted.prediction ** 2) * 100 == pytest.approx(narrow_rss if kept == "narrow"
+                                                                  else 2.0)
+    assert fitted.at_bound == {}
 
 
 def test_a_build_up_longer_than_a_tenth_of_the_stroke_is_found_by_the_widened_search(tmp_path):

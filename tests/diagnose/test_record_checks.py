@@ -46,16 +46,37 @@ def test_jitter_outnumbering_the_strokes_is_warned_about_and_strokes_both_ways_p
     assert record_checks.direction(SOURCE, _motion(np.r_[stroke, stroke]), np.ones(2000, bool)) == []
 
 
+def _strokes(per_stroke, count=10, dwell=()):
+    """Velocity of ``count`` strokes of ``per_stroke`` samples each, alternating in direction,
+    each followed by the samples ``dwell``."""
+    return np.concatenate([np.r_[np.full(per_stroke, (-1.0) ** i), dwell] for i in range(count)])
+
+
 @pytest.mark.parametrize("per_stroke, outcome", [(5, "refused"), (20, "warned"), (200, "quiet")])
-def test_sampling_against_the_strokes(per_stroke, outcome):
-    motion = SimpleNamespace(time=np.arange(10 * per_stroke) * 1e-3,
-                             reversals=np.arange(1, 10) * per_stroke)
+def test_sampling_against_the_strokes_hand_count(per_stroke, outcome):
+    v = _strokes(per_stroke)
+    motion, usable = _motion(v), np.ones(v.size, bool)
+    assert np.array_equal(record_checks.stroke_reversals(motion, usable),
+                          per_stroke * np.arange(1, 10))
     if outcome == "refused":
         with pytest.raises(ValueError, match=r"data.csv: column 'time': 5 samples between reversals"):
-            record_checks.sampling(SOURCE, motion)
+            record_checks.sampling(SOURCE, motion, usable)
         return
-    notes = record_checks.sampling(SOURCE, motion)
+    notes = record_checks.sampling(SOURCE, motion, usable)
     assert (len(notes) == 1 and "resolved by a few samples" in notes[0]) == (outcome == "warned")
+
+
+def test_jitter_flickers_at_the_stops_are_not_reversals_of_a_well_sampled_record():
+    # 100-sample strokes of 0.1 m with 20 samples of jitter (1e-4 m/s flickers, 1e-7 m each)
+    # at each stop: 20 direction changes a stop, but a stroke reversal every 120 samples
+    flicker = 1e-4 * (-1.0) ** np.arange(20)
+    v = _strokes(100, dwell=flicker)
+    motion, usable = _motion(v), np.ones(v.size, bool)
+    assert np.count_nonzero(np.diff(np.sign(v))) > 150  # every flicker changes the direction
+    # (a stop's last flicker may run on into the next stroke: one sample early)
+    reversals = record_checks.stroke_reversals(motion, usable)
+    assert reversals.size == 9 and np.all(np.abs(reversals - 120 * np.arange(1, 10)) <= 1)
+    assert record_checks.sampling(SOURCE, motion, usable) == []
 
 
 def _run(x):

@@ -18,7 +18,7 @@ Sign convention: the columns are the drive-force contributions -F_friction of un
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from itertools import combinations_with_replacement
 
 import numpy as np
@@ -103,6 +103,11 @@ class Fit:
     #: setting keys whose fitted value lies at an end of the search that is not a physical limit,
     #: after the search was widened once: key -> the end [the key's unit]
     at_bound: dict = field(default_factory=dict)
+
+    def bic(self, y: np.ndarray, fit_mask: np.ndarray) -> float:
+        """BIC [-] of the prediction against ``y`` on the fit samples."""
+        rss = float(np.sum((y - self.prediction)[fit_mask] ** 2))
+        return scoring.bic(rss, int(fit_mask.sum()), self.n_parameters)
 
 
 def with_offset(columns):
@@ -261,13 +266,20 @@ class Candidate:
     def fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
         """Best setting by BIC on the fit samples (grid, then ``continuous`` keys refined, per
         :meth:`family`); None if every setting is unphysical. A best setting at an open end of
-        the search (:meth:`at_bound`) is sought again over a search WIDER at its open ends; a
-        fit still there says so in Fit.at_bound."""
+        the search (:meth:`at_bound`) is sought again over a search WIDER at its open ends, and
+        the better of the two fits by BIC kept; a fit still at an open end says so in
+        Fit.at_bound."""
         fitted = self._fit(ctx, fit_mask)
-        if fitted is not None and fitted.at_bound and self.reach == 1.0:
-            wider = type(self)(self.WIDER)._fit(ctx, fit_mask)
-            return wider if wider is not None else fitted
-        return fitted
+        if fitted is None or not fitted.at_bound or self.reach != 1.0:
+            return fitted
+        wider = type(self)(self.WIDER)._fit(ctx, fit_mask)
+        if wider is None:
+            return fitted
+        if fitted.bic(ctx.y, fit_mask) < wider.bic(ctx.y, fit_mask):
+            # the two grids are not nested: the wider search looked beyond the first one's end
+            # and found nothing better there, so that end did not bind
+            return replace(fitted, at_bound={})
+        return wider
 
     def _fit(self, ctx: Context, fit_mask: np.ndarray) -> Fit | None:
         grid = self.settings(ctx)

@@ -34,25 +34,30 @@ HELD = 0.2  # share of moving samples repeating the previous position above whic
 HELD_REACH = 4  # samples each side over which the position must change for a pair to be moving
 
 
-def stretches(motion: Motion, usable: np.ndarray) -> list[tuple[float, float]]:
-    """(direction +-1, distance travelled [m]) of each maximal run of usable samples moving one
-    way, the distance as the sum of |v| over the run, each sample weighted by half the time to
-    its neighbours (a single sample of jitter travels its own share)."""
+def stretches(motion: Motion, usable: np.ndarray) -> list[tuple[float, float, int]]:
+    """(direction +-1, distance travelled [m], first sample) of each maximal run of usable
+    samples moving one way, the distance as the sum of |v| over the run, each sample weighted by
+    half the time to its neighbours (a single sample of jitter travels its own share)."""
     direction = np.where(usable, np.sign(motion.v), 0.0)
     travelled = np.abs(motion.v) * np.gradient(motion.time)
     change = np.flatnonzero(np.diff(direction) != 0.0) + 1
-    return [(float(direction[run[0]]), float(np.sum(travelled[run])))
+    return [(float(direction[run[0]]), float(np.sum(travelled[run])), int(run[0]))
             for run in np.split(np.arange(direction.size), change) if direction[run[0]] != 0.0]
+
+
+def _stroke_length(motion: Motion) -> float:
+    """The span of the position [m]: a stretch shorter than JITTER of it is no stroke."""
+    return float(np.ptp(motion.x))
 
 
 def direction(source, motion: Motion, usable: np.ndarray) -> list[str]:
     """Refuse a record whose feed travels one way only (by distance); warn about jitter."""
     parts = stretches(motion, usable)
-    forward = sum(d for s, d in parts if s > 0.0)
-    backward = sum(d for s, d in parts if s < 0.0)
+    forward = sum(d for s, d, _ in parts if s > 0.0)
+    backward = sum(d for s, d, _ in parts if s < 0.0)
     total = forward + backward
-    stroke = float(np.ptp(motion.x))
-    short = [d for _, d in parts if d < JITTER * stroke]
+    stroke = _stroke_length(motion)
+    short = [d for _, d, _ in parts if d < JITTER * stroke]
     said = (f"{len(short)} of the {len(parts)} stretches of motion one way travel less than "
             f"{JITTER:.0%} of the {stroke * 1e3:.4g} mm stroke each ({sum(short) * 1e3:.3g} mm in "
             f"all): jitter or vibration at standstill, not strokes")
@@ -66,11 +71,24 @@ def direction(source, motion: Motion, usable: np.ndarray) -> list[str]:
     return [f"{source}: {said}"] if len(short) >= max(JITTER_COUNT, strokes) else []
 
 
-def sampling(source, motion: Motion) -> list[str]:
-    """Refuse a record sampled too slowly for its strokes; warn where the reversals are coarse."""
-    if motion.reversals.size < 3:
+def stroke_reversals(motion: Motion, usable: np.ndarray) -> np.ndarray:
+    """First samples of the strokes (stretches travelling at least JITTER of the stroke) that
+    run against the stroke before them: the reversals of the motion, jitter's flickers of the
+    direction at a dwell and a stroke broken by a flicker not counted."""
+    stroke = _stroke_length(motion)
+    strokes = [(s, first) for s, d, first in stretches(motion, usable) if d >= JITTER * stroke]
+    return np.array([first for (s, first), (before, _) in zip(strokes[1:], strokes[:-1])
+                     if s != before], dtype=int)
+
+
+def sampling(source, motion: Motion, usable: np.ndarray) -> list[str]:
+    """Refuse a record sampled too slowly for its strokes; warn where the reversals are coarse.
+    Samples are counted between :func:`stroke_reversals` (dwells included, jitter not a
+    reversal: a well-sampled record that flickers at its stops is not too slow)."""
+    reversals = stroke_reversals(motion, usable)
+    if reversals.size < 3:
         return []
-    per_stroke = float(np.median(np.diff(motion.reversals)))
+    per_stroke = float(np.median(np.diff(reversals)))
     said = (f"{source}: column 'time': {per_stroke:.3g} samples between reversals (median), "
             f"{np.median(np.diff(motion.time)):.3g} s apart")
     if per_stroke < MIN_PER_STROKE:
@@ -122,5 +140,5 @@ def check(run, motion: Motion, usable: np.ndarray) -> list[str]:
     """Warnings on the motion of ``run`` (run_io.MeasuredRun) derived as ``motion``, over its
     ``usable`` samples; ValueError where the record cannot be diagnosed (module docstring)."""
     source = run.path / "data.csv"
-    return (position_channel(source, run) + sampling(source, motion)
+    return (position_channel(source, run) + sampling(source, motion, usable)
             + direction(source, motion, usable))
