@@ -156,6 +156,8 @@ class Truth:
     channel: str
     friction_sign: str | None
     conditions: dict = field(default_factory=dict)
+    also: str | None = None  # a second hidden effect, or None
+    expected_also: str | None = None  # the answer its step should give
 
 
 def allowed(effect: str, record_class: str) -> bool:
@@ -168,17 +170,24 @@ def allowed(effect: str, record_class: str) -> bool:
 
 
 def draw(out_dir, effect: str, record_class: str, seed: int, *, size: float = 1.0,
-         n_samples: int = 10000) -> Truth:
+         n_samples: int = 10000, also: str | None = None) -> Truth:
     """Write ``out_dir``/rig.toml and ``out_dir``/data.csv hiding ``effect`` in a record of
     ``record_class``, and return its :class:`Truth`. The same arguments give the same bytes;
-    the rig, timing, motion and noise depend on ``seed`` only (not on ``effect``).
+    the rig, timing, motion and noise depend on ``seed`` only (not on ``effect``). ``also``
+    hides a second effect beside the first, drawn from a stream of its own and scaled to the
+    same visible RMS on its own (its parameters in Truth.parameters prefixed "also_").
 
     Raises ValueError naming the argument that is wrong, or naming the class for a combination
     that cannot exist (see :func:`allowed`), or naming ``size`` where the effect cannot be made
     that strong within its physical bounds.
     """
     _check_arguments(effect, record_class, seed, size, n_samples)
-    rig = _draw_rig(seed, effect, record_class)
+    if also is not None:
+        _check_arguments(also, record_class, seed, size, n_samples)
+        if also == effect or "none" in (effect, also):
+            raise ValueError(f"also {also!r}: a second effect must be another effect than "
+                             f"{effect!r}, and neither 'none'")
+    rig = _draw_rig(seed, also if also == "ball_to_ball_contact" else effect, record_class)
     time, step = _draw_times(seed, record_class, n_samples)
     motion, profile, amplitude = _draw_motion(seed, record_class, time[-1])
     noise = _draw_force_noise(seed, record_class, rig.coulomb, time)
@@ -187,6 +196,12 @@ def draw(out_dir, effect: str, record_class: str, seed: int, *, size: float = 1.
                    rig.guideway["element_radius"], step,
                    target=VISIBLE_PER_SIZE * size * noise.predicted_rms)
     hidden = _EFFECT_BUILDERS[effect](scene, _stream(seed, "effect"))
+    if also is not None:
+        second = _EFFECT_BUILDERS[also](scene, _stream(seed, "second effect"))
+        hidden = _Hidden(hidden.contribution + second.contribution,
+                         {**hidden.parameters,
+                          **{f"also_{k}": v for k, v in second.parameters.items()}},
+                         {**hidden.columns, **second.columns})
     clean = rig.coulomb * np.sign(scene.velocity) + hidden.contribution
     if record_class in DRIVE_CLASSES:
         clean = clean + rig.stated_mass * scene.acceleration
@@ -203,7 +218,9 @@ def draw(out_dir, effect: str, record_class: str, seed: int, *, size: float = 1.
                   **hidden.parameters}
     if record_class in DRIVE_CLASSES:
         parameters["moving_mass_stated"] = rig.stated_mass
-    return Truth(effect=effect, expected=EFFECTS[effect], record_class=record_class,
+    return Truth(effect=effect, expected=EFFECTS[effect], also=also,
+                 expected_also=EFFECTS[also] if also is not None else None,
+                 record_class=record_class,
                  seed=int(seed), parameters={k: float(v) + 0.0 for k, v in parameters.items()},
                  noise_rms=float(np.std(recorded - clean)),
                  effect_rms=_rms(scene.visible(hidden.contribution)), channel=layout.channel,

@@ -45,13 +45,18 @@ def test_diagnosis_json_follows_spec(results):
     d = json.loads(text)
     assert list(d) == ["format", "missing_effect", "confidence", "channel", "gap_before",
                        "gap_after", "noise_floor", "candidates", "equation",
-                       "baseline_corrections", "intervals", "warnings"]
+                       "baseline_corrections", "intervals", "missing_effects", "warnings"]
     assert d["format"] == "guideway-diagnosis/1" and d["channel"] == "drive_force"
     assert d["baseline_corrections"] == [] and all(isinstance(w, str) for w in d["warnings"])
     named = next(c["parameters"] for c in d["candidates"] if c["effect"] == d["missing_effect"])
     for key, (low, high) in d["intervals"].items():
         assert low <= named[key] <= high
     assert 0.0 <= d["confidence"] <= 1.0 and d["equation"] is None
+    # one effect hidden: the one step is the named effect, its gap and parameters the candidate's
+    first = next(c for c in d["candidates"] if c["effect"] == d["missing_effect"])
+    assert [list(step) for step in d["missing_effects"]] == [
+        ["effect", "gap_after", "score", "parameters", "intervals"]]
+    assert {k: d["missing_effects"][0][k] for k in first} == first
     for c in d["candidates"]:
         assert list(c) == ["effect", "gap_after", "score", "parameters"]
     assert "e-" not in text and "e+" not in text and "NaN" not in text  # plain decimals
@@ -87,6 +92,7 @@ def test_unknown_proposes_an_equation_that_evaluates(results):
 def test_none_keeps_augmented_equal_to_baseline(results):
     root, out = results
     assert out["quiet"]["diagnosis"]["gap_after"] == out["quiet"]["diagnosis"]["gap_before"]
+    assert out["quiet"]["diagnosis"]["missing_effects"] == []
     data = np.genfromtxt(root / "quiet_out" / "fit.csv", delimiter=",", names=True)
     np.testing.assert_array_equal(data["baseline"], data["augmented"])
 

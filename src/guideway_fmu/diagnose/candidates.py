@@ -18,6 +18,7 @@ Sign convention: the columns are the drive-force contributions -F_friction of un
 """
 from __future__ import annotations
 
+from copy import copy
 from dataclasses import dataclass, field, replace
 from itertools import combinations_with_replacement
 
@@ -103,11 +104,32 @@ class Fit:
     #: setting keys whose fitted value lies at an end of the search that is not a physical limit,
     #: after the search was widened once: key -> the end [the key's unit]
     at_bound: dict = field(default_factory=dict)
+    #: the part of the prediction known before the fit: its context's ``fixed`` (m a, and the
+    #: extensions of effects it was fitted beside)
+    known: np.ndarray | None = None
 
     def bic(self, y: np.ndarray, fit_mask: np.ndarray) -> float:
         """BIC [-] of the prediction against ``y`` on the fit samples."""
         rss = float(np.sum((y - self.prediction)[fit_mask] ** 2))
         return scoring.bic(rss, int(fit_mask.sum()), self.n_parameters)
+
+
+def extension(ctx: Context, fit: Fit) -> np.ndarray:
+    """The part [unit of ctx.y] of ``fit``'s prediction (made on the motion of ``ctx``) beyond
+    the baseline's form: less what was known before the fit (Fit.known), its Coulomb level over
+    the baseline's column and its offset. What a named effect adds to the model, held fixed while
+    another effect is fitted beside it (more_effects.py); every candidate reports its level as
+    the parameter "coulomb"."""
+    level = float(fit.parameters["coulomb"]) * BASELINE.coulomb_column(ctx, ctx.motion.v)
+    return fit.prediction - fit.known - level - fit.offset
+
+
+def with_fixed(ctx: Context, fixed: np.ndarray) -> Context:
+    """``ctx`` with the known part ``fixed`` [unit of ctx.y] in place of its own (the motion's
+    derived quantities shared, not computed again)."""
+    out = copy(ctx)
+    out.fixed = fixed
+    return out
 
 
 def with_offset(columns):
@@ -302,7 +324,7 @@ class Candidate:
         k = self.dof(coef, setting)
         return Fit(self.effect, setting, coef, ctx.fixed + design @ coef, k, params,
                    self.fmu_name, fmu_params, self.rig_mass(ctx, coef), float(coef[-1]),
-                   self.uses_position, self.at_bound(grid, setting))
+                   self.uses_position, self.at_bound(grid, setting), ctx.fixed)
 
 
 class Lubrication(Candidate):

@@ -44,15 +44,14 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import lsq_linear, minimize_scalar
 
-from . import calibration, locate, record_checks, regression
+from . import calibration, locate, more_effects, record_checks, regression
 from .candidates import (BASELINE, CANDIDATES, RUNNING_DISTANCE_EFFECTS, Context, Fit,
                          PreslidingHysteresis, candidates_for)
 from .run_io import MeasuredRun, load_run
-from .scoring import (DOUBT, NEAR_NOISE, SCORE_MIN, bic, capped, confidence,
+from .scoring import (DOUBT, EXPLAINED, NEAR_NOISE, SCORE_MIN, bic, capped, confidence,
                       jackknife_intervals, significant_gap)
 from .signals import derive_motion, noise_rms, sampling_step
 
-EXPLAINED = 0.4  # share of the gap's excess variance over the noise a candidate must explain
 LAW_EXPLAINED = 0.6  # ... and a proposed law, for the answer unknown (its terms are not physics)
 #: a significant gap no candidate or law explains is ``unknown`` above this many times the whole
 #: noise, else ``none``: the errors of the measured inputs (a differenced, quantised motion) alone
@@ -163,6 +162,9 @@ class Naming:
     #: the answer's raw BIC weight (scoring.confidence), the evidence ``confidence`` is
     #: calibrated from (calibration.py) with the gap before over the noise floor
     weight: float
+    #: the effects named in turn (more_effects.Step), the first the named one; empty for
+    #: ``none`` and ``unknown``
+    steps: list
     experiment: dict | None = None  # the separating experiment: none for horizontal runs yet
 
 
@@ -318,14 +320,6 @@ def _splits(run: MeasuredRun, motion) -> tuple[np.ndarray, list]:
     return usable, splits
 
 
-def _out_of_fold(splits, predictions) -> np.ndarray:
-    """Each held-out sample of ``splits`` from the prediction of the model fitted without it."""
-    pooled = np.zeros_like(predictions[0])
-    for (_, h), prediction in zip(splits, predictions):
-        pooled[h] = prediction[h]
-    return pooled
-
-
 def corrected_mass(ctx: Context, splits, usable, best: float) -> dict | None:
     """The moving mass [kg] a drive-force record shows where it contradicts the stated one
     downward (baseline_corrections of docs/measured-run.md: {"parameter", "stated", "fitted",
@@ -347,9 +341,9 @@ def corrected_mass(ctx: Context, splits, usable, best: float) -> dict | None:
     free = [np.linalg.lstsq(design[f], target[f], rcond=None)[0] for f, _ in splits]
     stated = [np.linalg.lstsq(design[f][:, ::2], target[f], rcond=None)[0] for f, _ in splits]
     n = int(usable.sum())
-    score = (bic(float(np.sum((target - _out_of_fold(
+    score = (bic(float(np.sum((target - locate.out_of_fold(
                  splits, [design[:, ::2] @ c for c in stated]))[usable] ** 2)), n, 2)
-             - bic(float(np.sum((target - _out_of_fold(splits, [design @ c for c in free]))
+             - bic(float(np.sum((target - locate.out_of_fold(splits, [design @ c for c in free]))
                                 [usable] ** 2)), n, 3))
     masses = [{"mass": ctx.mass + float(c[1])} for c in free]
     fitted = masses[0]["mass"]
@@ -384,7 +378,7 @@ def _name(ctx: Context, correction: dict | None = None) -> Naming:
         return fitted
 
     def out_of_fold(predictions):
-        return _out_of_fold(splits, predictions)
+        return locate.out_of_fold(splits, predictions)
 
     bases = [calibrated(f) for f, _ in splits]
     baseline = bases[0]
@@ -419,7 +413,7 @@ def _name(ctx: Context, correction: dict | None = None) -> Naming:
         score = bic_base - held_out_bic(prediction, fitted[0].n_parameters)
         ranked.append((score, fitted[0], locate.gap(y, fitted[0].prediction, held)))
         cv_gaps[candidate.effect] = locate.gap(y, prediction, usable)
-        folds_of[candidate.effect] = [f.parameters for f in fitted]
+        folds_of[candidate.effect] = fitted
         if score > best_score:
             best_residual, best_parameters, best_score = (y - prediction,
                                                           fitted[0].n_parameters, score)
@@ -497,12 +491,14 @@ def _name(ctx: Context, correction: dict | None = None) -> Naming:
             doubts.append(f"{key} = {end:.4g} lies at the end of its search, widened once: the "
                           f"record does not fix it")
         stated = min(stated, DOUBT) if doubts else stated
-    intervals = (jackknife_intervals(folds_of[winner.effect], winner.parameters)
-                 if winner is not None else {})
+    intervals = (jackknife_intervals([f.parameters for f in folds_of[winner.effect]],
+                                     winner.parameters) if winner is not None else {})
+    steps = (more_effects.further_effects(ctx, splits, usable, noise_cv, folds_of[winner.effect],
+                                          ranked[chosen][0]) if winner is not None else [])
     return Naming(run, ctx, fit_mask, held, usable, baseline, floor, noise, gap_base,
                   gap_cv / noise_cv,
                   white, significant, where, ranked, foreign_score, effect, winner, equation,
                   values, stated, twins, best_residual, best_parameters,
                   [correction] if correction is not None else [], intervals,
                   jackknife_intervals([b.parameters for b in bases], baseline.parameters), doubts,
-                  weight)
+                  weight, steps)

@@ -44,6 +44,15 @@ def folds(n: int, usable: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     return [split(n, usable, (1 + k) % FOLDS) for k in range(FOLDS)]
 
 
+def out_of_fold(splits, predictions) -> np.ndarray:
+    """Each held-out sample of ``splits`` (:func:`folds`) from the prediction of the model
+    fitted without it (``predictions``, one per fold)."""
+    pooled = np.zeros_like(predictions[0])
+    for (_, held), prediction in zip(splits, predictions):
+        pooled[held] = prediction[held]
+    return pooled
+
+
 def gap(measured, simulated, mask) -> float:
     """Range-normalised RMS error on ``mask``: rms(measured - simulated) / range(measured)."""
     m = np.asarray(measured)[mask]

@@ -67,12 +67,18 @@ def answer_kind(diagnosis: dict) -> str:
     """The kind of answer of ``diagnosis`` in words: a missing effect, a wrong baseline
     parameter, both, no discrepancy beyond noise, or a gap no effect explains."""
     effect, corrected = diagnosis["missing_effect"], bool(diagnosis["baseline_corrections"])
+    count = len(diagnosis.get("missing_effects", []))
     said = {"none": "no discrepancy beyond the noise", "unknown": "a gap no candidate effect "
-            "explains"}.get(effect, "a missing effect")
+            "explains"}.get(effect, f"{count} missing effects" if count > 1 else "a missing effect")
     if corrected:
         return ("a baseline parameter is wrong" if effect == "none"
                 else f"a baseline parameter is wrong, and {said} after its correction")
     return said
+
+
+def _parameters_text(parameters: dict) -> str:
+    return ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
+                     for k, v in parameters.items())
 
 
 def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> Path:
@@ -83,21 +89,29 @@ def write_html(path: Path, diagnosis: dict, notes: dict, images: list[Path]) -> 
                   f"{c['fitted']:.6g} ({c['interval'][0]:.6g} to {c['interval'][1]:.6g}); "
                   f"refitted before any effect was looked for")
                  for c in d["baseline_corrections"]),
-               ("missing effect", d["missing_effect"]), ("confidence", plain(round(d["confidence"], 4))),
+               ("missing effect", " then ".join(e["effect"] for e in d["missing_effects"])
+                or d["missing_effect"]), ("confidence", plain(round(d["confidence"], 4))),
                *((f"{k} ({scoring.LEVEL:.0%} interval)", f"{lo:.6g} to {hi:.6g}")
                  for k, (lo, hi) in d["intervals"].items()),
                ("compared channel", d["channel"]), ("gap before (baseline)", plain(round(d["gap_before"], 6))),
                ("gap after", plain(round(d["gap_after"], 6))), ("noise floor", plain(round(d["noise_floor"], 6))),
                ("proposed equation for the residual", d["equation"] or "-")]
     candidates = [(c["effect"], plain(round(c["score"], 2)), plain(round(c["gap_after"], 6)),
-                   ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
-                             for k, v in c["parameters"].items()))
-                  for c in d["candidates"]]
+                   _parameters_text(c["parameters"])) for c in d["candidates"]]
+    steps = [(str(i + 1), step["effect"], plain(round(step["score"], 2)),
+              plain(round(step["gap_after"], 6)), _parameters_text(step["parameters"]))
+             for i, step in enumerate(d["missing_effects"])]
     parts = [f"<h1>Diagnosis of {html.escape(notes['run'])}</h1>",
-             pages.table(verdict, ["", ""]),
-             "<h2>Candidates (scored on held-out samples, cross-validated over 3 folds; "
-             "parameters and held-out gap of fold 1)</h2>",
-             pages.table(candidates, ["effect", "score", "held-out gap", "parameters"])]
+             pages.table(verdict, ["", ""])]
+    if len(steps) > 1:
+        parts += ["<h2>Effects named in turn (each fitted beside those before it, all refitted "
+                  "together; the gap after each step is that of the model holding it and those "
+                  "before it; the co-simulated model and fit.csv hold the first)</h2>",
+                  pages.table(steps, ["step", "effect", "score over the step before",
+                                      "held-out gap after", "parameters (joint fit)"])]
+    parts += ["<h2>Candidates (scored on held-out samples, cross-validated over 3 folds; "
+              "parameters and held-out gap of fold 1)</h2>",
+              pages.table(candidates, ["effect", "score", "held-out gap", "parameters"])]
     for title, entries in notes["sections"].items():
         parts.append(f"<h2>{html.escape(title)}</h2>")
         parts.append(pages.table(list(entries.items()), ["", ""]))
@@ -172,6 +186,10 @@ def describe_friction_sign(run) -> str:
     return f"friction_force {what}, {said}"
 
 
+def _rounded(parameters: dict) -> dict:
+    return {k: (round(v, 12) if isinstance(v, float) else v) for k, v in parameters.items()}
+
+
 def diagnosis_record(naming, realised) -> dict:
     """The content of diagnosis.json, of a horizontal or a vertical run's naming and
     realisation."""
@@ -182,13 +200,16 @@ def diagnosis_record(naming, realised) -> dict:
         "gap_before": round(before, 8), "gap_after": round(after, 8),
         "noise_floor": round(naming.noise, 8),
         "candidates": [{"effect": f.effect, "gap_after": round(g, 8), "score": round(float(s), 3),
-                        "parameters": {k: (round(v, 12) if isinstance(v, float) else v)
-                                       for k, v in f.parameters.items()}}
+                        "parameters": _rounded(f.parameters)}
                        for s, f, g in naming.ranked],
         "equation": naming.equation,
         "baseline_corrections": [{k: c[k] for k in ("parameter", "stated", "fitted", "interval")}
                                  for c in naming.corrections],
         "intervals": naming.intervals,
+        "missing_effects": [{"effect": step.effect, "gap_after": round(step.gap_after, 8),
+                             "score": round(float(step.score), 3),
+                             "parameters": _rounded(step.fit.parameters),
+                             "intervals": step.intervals} for step in naming.steps],
         "warnings": list(naming.run.warnings),
         **({"separating_experiment": naming.experiment} if naming.experiment is not None else {}),
     }

@@ -8,6 +8,7 @@ from scipy import stats
 
 SIGNIFICANT_ERRORS = 3.0  # standard errors of the noise's held-out RMS a significant gap exceeds
 SCORE_MIN = 10.0  # held-out BIC improvement a candidate needs to be named
+EXPLAINED = 0.4  # share of the gap's excess variance over the noise a named effect must explain
 NEAR_NOISE = 1.3  # gap before over the noise floor at or under which a naming is doubted ...
 DOUBT = 0.5  # ... and its confidence at most this
 LEVEL = 0.95  # confidence level of the intervals of fitted numbers

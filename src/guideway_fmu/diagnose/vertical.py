@@ -72,10 +72,12 @@ from ..physics.roller_guide.roller_law import EXPONENT, MICRON, palmgren_stiffne
 from ..reference.vertical import FusedVertical
 from ..scenarios import vertical_rig
 from . import locate, regression
-from .decide import EXPLAINED, LAW_EXPLAINED, UNRESOLVED
+from .decide import LAW_EXPLAINED, UNRESOLVED
+from .more_effects import Step
 from .realise import write_replay
 from .run_io import REDUCED_MODULUS, MeasuredRun
-from .scoring import DOUBT, NEAR_NOISE, SCORE_MIN, bic, capped, confidence, significant_gap
+from .scoring import (DOUBT, EXPLAINED, NEAR_NOISE, SCORE_MIN, bic, capped, confidence,
+                      significant_gap)
 from .signals import channel_noise, denoise_spectrum, derive_motion
 
 CONTACT_FMUS = {"dry_hertz": "ContactDryHertz", "ehl": "ContactEHL"}
@@ -493,6 +495,7 @@ class VerticalNaming:
     experiment: dict | None = None
     corrections: list = dataclasses.field(default_factory=list)  # none refitted yet
     intervals: dict = dataclasses.field(default_factory=dict)  # not computed yet
+    steps: list = dataclasses.field(default_factory=list)  # more_effects.Step of the named one
 
 
 def law_terms(rig: VerticalRig, frequencies) -> dict:
@@ -569,9 +572,11 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     fits = {f.effect: f for _, f, _ in ranked}
     experiment = (separating_experiment(rig, winner, fits[twins[0]], noise * float(np.ptp(y)))
                   if twins else None)
+    # a second effect is not looked for on vertical runs yet: the named one is the only step
+    steps = [Step(effect, winner, [winner], best_gap, score)] if winner is not None else []
     return VerticalNaming(run, rig, y, fit_mask, held, baseline, noise, gap_base, significant,
                           ranked, effect, winner, equation, min(stated, DOUBT) if doubts else stated,
-                          frequencies, twins, doubts, experiment)
+                          frequencies, twins, doubts, experiment, steps=steps)
 
 
 #: least second static load of the separating experiment, over the preload: a load of the
