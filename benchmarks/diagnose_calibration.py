@@ -1,5 +1,5 @@
 """Whether the discrepancy workflow's confidence means what it says, on never-seen draws of both
-horizontal generators (steps 1-4 only, no co-simulation).
+horizontal generators (steps 1-5 only, no co-simulation).
 
     python benchmarks/diagnose_calibration.py [--draws 24] [--samples 4000] [--jobs 2]
         [--seed 70000] [--fit-seed 90000 --fit-draws 12] [--page docs/diagnosis-calibration.md]
@@ -151,7 +151,7 @@ def main(argv=None) -> None:
             f"(`guideway_synthetic/truth.py`, as [diagnosis.md](diagnosis.md) draws them) and "
             f"{args.draws} per effect and record class (`guideway_synthetic/second_truth.py`, as "
             f"[diagnosis-second-generator.md](diagnosis-second-generator.md) draws them), "
-            f"{args.samples} samples each, from seed {args.seed} on; steps 1-4 only "
+            f"{args.samples} samples each, from seed {args.seed} on; steps 1-5 only "
             f"(`diagnose/decide.py`). {len(rows)} records. An answer is right where it is the "
             f"expected one; a refused record counts as wrong at confidence 0.", "",
             f"Reliability: {good} of the {len(judged)} bands holding at least {JUDGED} records "

@@ -1,5 +1,5 @@
 """How often the discrepancy workflow names the hidden effect, over many random draws under the
-harder conditions real rigs give (steps 1-4 of the workflow only, no co-simulation: fast).
+harder conditions real rigs give (steps 1-5 of the workflow only, no co-simulation: fast).
 
     python benchmarks/diagnose_naming.py [--draws 24] [--samples 4000] [--jobs 2] [--seed 1000]
                                          [--page docs/diagnosis.md]
@@ -89,7 +89,7 @@ def write_page(path: Path, command: str, args, rows, right: int, hidden: int, wr
         f"Synthetic runs of `guideway_synthetic/truth.py`, {args.draws} draws per hidden effect of "
         f"{args.samples} samples from seed {args.seed} on; effect size 1, 1/2 or 1/3 of a clearly "
         f"visible one, noise 0.5, 1.0 or 1.5 % of the force range, every other draw unevenly "
-        f"sampled. The truth laws differ in form from the candidates' laws. Steps 1-4 only "
+        f"sampled. The truth laws differ in form from the candidates' laws. Steps 1-5 only "
         f"(`diagnose/decide.py`, no co-simulation). The generator is the project's own: these "
         f"figures test the workflow against its own assumptions about rigs and effects, not "
         f"against real records ([real-data.md](real-data.md) has public measured ones).", "",

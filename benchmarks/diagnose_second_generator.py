@@ -1,6 +1,6 @@
 """How often the discrepancy workflow names the hidden effect on records of the second,
 independent generator (guideway_synthetic/second_truth.py), by effect and by record class, on seeds it was
-never tuned on (steps 1-4 only, no co-simulation).
+never tuned on (steps 1-5 only, no co-simulation).
 
     python benchmarks/diagnose_second_generator.py [--draws 4] [--samples 4000] [--jobs 2]
         [--seed 60000] [--classes CLASS ...] [--effects EFFECT ...]
@@ -48,7 +48,8 @@ def draw(job):
             "weight": named.weight,
             "gap_before_over_noise": round(named.gap_base / named.noise, 3),
             "gap_over_noise": round(gap / named.noise, 3),
-            "leading": [(f.effect, round(float(s), 1)) for s, f, _ in named.ranked[:3]]}
+            "leading": [(f.effect, round(float(s), 1)) for s, f, _ in named.ranked[:3]],
+            "further": [s.effect for s in named.steps[1:]]}
 
 
 def table(counts: dict, title: str) -> list[str]:
@@ -96,6 +97,7 @@ def main(argv=None) -> None:
             wrong.append(row)
     for row in wrong:
         print(row, file=sys.stderr)
+    further = [r for r in rows if r.get("further")]
     subset = "".join(f" --{name} {' '.join(chosen)}" for name, chosen, every in
                      (("classes", args.classes, second_truth.CLASSES),
                       ("effects", args.effects, second_truth.EFFECTS))
@@ -109,10 +111,16 @@ def main(argv=None) -> None:
              "friction literature without reading the first one, on seeds the workflow was never "
              f"tuned on: {args.draws} draws per allowed pair of effect and record class, "
              f"{args.samples} samples each, the effect's visible part 8 times the noise. Steps "
-             "1-4 only (`diagnose/decide.py`).", "",
+             "1-5 only (`diagnose/decide.py`).", "",
              *table(by_effect, "expected answer"), "", *table(by_class, "record class"), "",
              f"Named right: {named_right} / {total}. Draws the generator could not make at this "
-             f"size: {dict(skipped) or 'none'}.", "", "## Wrong answers", ""]
+             f"size: {dict(skipped) or 'none'}.", "",
+             "Records hiding one effect on which a further effect was named after it "
+             "(`missing_effects`, step 5; [diagnosis-two-effects.md](diagnosis-two-effects.md) "
+             f"measures records hiding two): {len(further)} / {total}"
+             + "".join(f"; `{r['effect']}` on `{r['class']}` (seed {r['seed']}) then "
+                       f"{', '.join(r['further'])}" for r in further) + ".",
+             "", "## Wrong answers", ""]
     lines += [f"- `{r['effect']}` on `{r['class']}` (seed {r['seed']}): `{r['named']}`"
               + (f", gap {r['gap_over_noise']} noise floors, leading {r['leading']}"
                  if "leading" in r else f": {r.get('why', '')}") for r in wrong] or ["none"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -98,7 +99,9 @@ def test_vertical_workflow_names_the_hidden_effect_of_first_generator_records(
     d = json.loads((tmp_path / "out" / "diagnosis.json").read_text())
     assert list(d) == ["format", "missing_effect", "confidence", "channel", "gap_before",
                        "gap_after", "noise_floor", "candidates", "equation",
-                       "baseline_corrections", "intervals", "warnings"]
+                       "baseline_corrections", "intervals", "missing_effects", "warnings"]
+    assert [e["effect"] for e in d["missing_effects"]] == (
+        [] if d["missing_effect"] in ("none", "unknown") else [d["missing_effect"]])
     if info.expected != "unknown":  # the gap closes (on 0.03 s records not yet to the noise:
         # the free vibration's frequency is resolved to about 1 %, its phase needs less)
         assert d["gap_after"] < 0.6 * d["gap_before"] and d["gap_before"] > 3 * d["noise_floor"]
@@ -372,3 +375,19 @@ def test_separating_experiment_parts_a_lost_preload_from_an_added_mass_that_ring
     assert ratio == pytest.approx(heavy.mass / mass, rel=0.05) and ratio > 1.05
     assert 0.0 < apart["frequency_apart"] < 0.05 and apart["displacement_apart_in_noise"] > 1.0
     assert "more normal force" in apart["record"]
+
+
+def test_frequency_match_finds_the_value_through_a_stepped_peak_estimate_hand_calculation():
+    # a simulated peak 4000 (1 + q) Hz estimated in 1 Hz steps, the record's at 4383.3 Hz: the
+    # secant from two values 1e-5 apart sees one step (a zero slope) and stalls; Brent's
+    # bisection steps reach q = 383.3 / 4000 to within a step's width in q, 1 / 4000
+    rig = SimpleNamespace(measured_natural_frequency=lambda f: float(np.floor(f[0])))
+
+    def evaluate(q):
+        return q, np.array([4000.0 * (1.0 + q)])
+
+    assert rig.measured_natural_frequency(evaluate(0.2)[1]) == rig.measured_natural_frequency(
+        evaluate(0.2 + 1e-5)[1])  # where the secant stalls
+    matched = vertical._frequency_match(rig, evaluate, 4383.3, -0.5, 1.0)
+    assert abs(matched - 383.3 / 4000.0) <= 1.0 / 4000.0
+    assert vertical._frequency_match(rig, evaluate, 9000.0, -0.5, 1.0) is None  # not bracketed

@@ -1,4 +1,4 @@
-"""The decision of the discrepancy workflow (steps 1-4): which effect a measured run misses.
+"""The decision of the discrepancy workflow (steps 1-5): which effects a measured run misses.
 
 1. load and check the measured run (run_io), derive the motion that drives the model (signals)
    and find how many samples the compared channel lags it (:func:`channel_delay`; a shift the
@@ -14,7 +14,8 @@
    the gap exceeds the noise floor by SIGNIFICANT_ERRORS standard errors of an RMS of white noise
    (1 + 3 / sqrt(2 n): 2.7 % for n = 6000), its score exceeds SCORE_MIN and that of a law in
    foreign terms, and it explains at least EXPLAINED of the gap's excess variance over the
-   noise; else ``unknown`` with a sparse-regression law for the residual when such a law (or
+   noise, alone or, with its score above SCORE_MIN, together with the effects step 5 names
+   after it (two effects of about equal size each leave the other's gap); else ``unknown`` with a sparse-regression law for the residual when such a law (or
    the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap
    exceeds UNRESOLVED times the whole noise (locate.incoherent_noise: noise of any colour, where
    the white floor sees only its high-frequency part), and the same holds on the samples whose
@@ -36,6 +37,7 @@
    a candidate whose model a richer one contains is named where it scores within SCORE_MIN of
    it, times the correlation time of the richer one's residual (:func:`_nested_choice`:
    preload loss before ball-to-ball contact).
+5. look again for further effects beside the named one (more_effects.py).
 """
 from __future__ import annotations
 
@@ -123,7 +125,7 @@ def _nested_choice(ranked: list, chosen: int, margin: float = SCORE_MIN) -> int:
 
 @dataclass
 class Naming:
-    """Steps 1-4 of the workflow on one run: the data, the models and the decision."""
+    """Steps 1-5 of the workflow on one run: the data, the models and the decision."""
 
     run: MeasuredRun
     ctx: Context
@@ -266,7 +268,7 @@ def _passive_friction(ctx: Context, usable):
 
 
 def decide(run_dir) -> Naming:
-    """Load, calibrate, locate and name (steps 1-4) without co-simulating. Raises
+    """Load, calibrate, locate and name (steps 1-5) without co-simulating. Raises
     FileNotFoundError or ValueError (one message naming the file and the row, column, section
     or key) for a run that cannot be used, the motion's checks (record_checks.py: one way only,
     sampled too slowly for its strokes, a position of a handful of levels) included; their
@@ -451,12 +453,22 @@ def _name(ctx: Context, correction: dict | None = None) -> Naming:
     # the shape of correlated noise, which the BIC of correlated samples overrates tau times)
     chosen = _nested_choice(ranked, chosen, SCORE_MIN * (locate.correlation_time(
         y - ranked[chosen][1].prediction, usable) if ranked else 1.0))
+    steps = []
     if significant:
         score, best, _ = ranked[chosen] if ranked else (-np.inf, None, gap_base)
-        if (score > SCORE_MIN and share(cv_gaps[best.effect]) >= EXPLAINED
-                and score > foreign_score):
+        if score > SCORE_MIN:  # the effects named in turn from the best (step 5)
+            steps = more_effects.further_effects(ctx, splits, usable, noise_cv,
+                                                 folds_of[best.effect], score)
+        # the best alone, or with the effects named after it where it explains too little
+        # alone (two effects of about equal size: each leaves the other's gap)
+        together = sum(step.score for step in steps)
+        if (score > SCORE_MIN and (share(cv_gaps[best.effect]) >= EXPLAINED
+                                   and score > foreign_score
+                                   or len(steps) > 1 and share(steps[-1].cross_gap) >= EXPLAINED
+                                   and together > foreign_score)):
             effect, winner = best.effect, best
         else:
+            steps = []
             (equation, values, _), law_score, law_prediction = law(foreign=False)
             laws = [(law_score, law_prediction), (foreign_score, foreign_prediction)]
             whole = locate.incoherent_noise(ctx.motion, y - base_cv, usable) / span
@@ -493,8 +505,6 @@ def _name(ctx: Context, correction: dict | None = None) -> Naming:
         stated = min(stated, DOUBT) if doubts else stated
     intervals = (jackknife_intervals([f.parameters for f in folds_of[winner.effect]],
                                      winner.parameters) if winner is not None else {})
-    steps = (more_effects.further_effects(ctx, splits, usable, noise_cv, folds_of[winner.effect],
-                                          ranked[chosen][0]) if winner is not None else [])
     return Naming(run, ctx, fit_mask, held, usable, baseline, floor, noise, gap_base,
                   gap_cv / noise_cv,
                   white, significant, where, ranked, foreign_score, effect, winner, equation,

@@ -34,6 +34,7 @@ class Step:
     folds: list  # the fit of every fold (fit.parameters of each: the intervals)
     gap_after: float  # held-out gap (fold 1) of the joint model up to this step [-]
     score: float  # cross-validated held-out BIC gain over the model before this step
+    cross_gap: float  # cross-validated gap [-] of that joint model over all usable samples
     intervals: dict = field(default_factory=dict)  # parameter -> [low, high] (scoring.LEVEL)
 
 
@@ -72,7 +73,8 @@ def further_effects(ctx: Context, splits, usable: np.ndarray, noise: float,
 
     named = {first[0].effect: first}
     scores = {first[0].effect: first_score}
-    gaps = {first[0].effect: locate.gap(y, first[0].prediction, held)}
+    gaps = {first[0].effect: (locate.gap(y, first[0].prediction, held),
+                              locate.gap(y, predicted(first), usable))}
     joint = first  # the fold fits whose predictions are the joint model's
     while len(named) < MAX_EFFECTS:
         gap = locate.gap(y, predicted(joint), usable)
@@ -102,7 +104,8 @@ def further_effects(ctx: Context, splits, usable: np.ndarray, noise: float,
             if refitted is not None:
                 named[each] = refitted
         joint = named[effect]
-        gaps[effect] = locate.gap(y, joint[0].prediction, held)
-    return [Step(effect, folds[0], folds, gaps[effect], scores[effect],
+        gaps[effect] = (locate.gap(y, joint[0].prediction, held),
+                        locate.gap(y, predicted(joint), usable))
+    return [Step(effect, folds[0], folds, gaps[effect][0], scores[effect], gaps[effect][1],
                  jackknife_intervals([f.parameters for f in folds], folds[0].parameters))
             for effect, folds in named.items()]

@@ -96,6 +96,7 @@ START_MATTERS = 0.1  # free vibration of one load noise RMS at the start, in cha
 STEP, TRUST = 0.05, 0.7  # the fit's first step and its largest, in its parameter (fit_candidate)
 TUNED_SPAN = 0.003  # half-width of the search around the value matching the natural frequency
 FREQUENCY_STEPS = 4  # secant steps matching the simulated free-vibration frequency
+BRENT_STEPS = 20  # Brent steps of the same match over the candidate's whole range, at most
 RESOLUTION = 1e-4  # the reference resolves the compared channel to this share of its range ...
 MAX_RTOL = 1e-7  # ... and keeps the phase of an undamped vibration over hundreds of periods
 
@@ -398,12 +399,34 @@ def tuned_start(rig: VerticalRig, candidate: Candidate, y) -> float | None:
     return float(brentq(mismatch, lo, hi, rtol=1e-6))
 
 
+def _frequency_match(rig: VerticalRig, evaluate, measured: float, q_lo: float,
+                     q_hi: float) -> float | None:
+    """The q in [q_lo, q_hi] whose simulation (``evaluate(q)[1]``) vibrates closest to the
+    ``measured`` free-vibration frequency [Hz], by Brent's method over the whole range where
+    its ends bracket it (the frequency is monotone in a mass or a preload; its estimate moves
+    in steps over small changes of q, which the bisection steps tolerate); else None. The
+    secant steps from the linearised estimate stall where two estimates are equal."""
+    errors = {}
+
+    def error(q):
+        if q not in errors:
+            peak = rig.measured_natural_frequency(evaluate(q)[1])
+            errors[q] = np.nan if peak is None else peak - measured
+        return errors[q]
+
+    if not error(q_lo) * error(q_hi) < 0.0:
+        return None
+    brentq(error, q_lo, q_hi, xtol=1e-5, maxiter=BRENT_STEPS, disp=False)
+    return min((q for q in errors if np.isfinite(errors[q])), key=lambda q: abs(errors[q]))
+
+
 def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFit:
     """The candidate's parameter q (its log where ``log``, else the extra mass over the stated
     one) with the offset. Where :func:`tuned_start` finds the record's free-vibration frequency,
     a bounded scalar search within TUNED_SPAN of it (the residual's basin around the true value
     is narrow: a free vibration of hundreds of periods dephases within a fraction of a per
-    cent of frequency); else Gauss-Newton, y - f(q) ~ J dq + c with J the secant slope of the
+    cent of frequency), and again around the value whose simulation vibrates at the measured
+    frequency (:func:`_frequency_match`), the least residual kept; else Gauss-Newton, y - f(q) ~ J dq + c with J the secant slope of the
     two best simulations, each step at most TRUST. At most SIMULATIONS simulations."""
     lo, hi = candidate.bounds
     to_q = (lambda v: math.log(v)) if candidate.log else (lambda v: v / rig.base.mass)
@@ -445,6 +468,12 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
         minimize_scalar(lambda q: evaluate(q)[2], method="bounded",
                         bounds=(max(q0 - TUNED_SPAN, q_lo), min(q0 + TUNED_SPAN, q_hi)),
                         options={"maxiter": SIMULATIONS, "xatol": 1e-5})
+        matched = _frequency_match(rig, evaluate, measured, q_lo, q_hi)
+        if matched is not None:  # a second basin to look in: the fit keeps the least residual
+            minimize_scalar(lambda q: evaluate(q)[2], method="bounded",
+                            bounds=(max(matched - TUNED_SPAN, q_lo),
+                                    min(matched + TUNED_SPAN, q_hi)),
+                            options={"maxiter": SIMULATIONS, "xatol": 1e-5})
     else:
         start = float(np.clip(to_q(candidate.start), q_lo, q_hi))
         points = sorted([evaluate(start),
@@ -573,7 +602,8 @@ def decide_vertical(run: MeasuredRun, folder: Path, fmu_dir: Path) -> VerticalNa
     experiment = (separating_experiment(rig, winner, fits[twins[0]], noise * float(np.ptp(y)))
                   if twins else None)
     # a second effect is not looked for on vertical runs yet: the named one is the only step
-    steps = [Step(effect, winner, [winner], best_gap, score)] if winner is not None else []
+    steps = ([Step(effect, winner, [winner], best_gap, score, best_gap)] if winner is not None
+             else [])
     return VerticalNaming(run, rig, y, fit_mask, held, baseline, noise, gap_base, significant,
                           ranked, effect, winner, equation, min(stated, DOUBT) if doubts else stated,
                           frequencies, twins, doubts, experiment, steps=steps)
