@@ -45,7 +45,7 @@ def draw(job):
     return {"effect": effect, "draw": i, "size": round(size, 3), "noise": noise,
             "expected": info.expected, "named": named.effect,
             "confidence": round(named.confidence, 4), "weight": named.weight,
-            "gap_over_noise": round(named.gap_base / named.noise, 3),
+            "held": bool(named.doubts), "gap_over_noise": round(named.gap_base / named.noise, 3),
             "cross_gap_over_noise": round(named.cross_gap, 3),
             "leading": [(f.effect, round(float(s), 1)) for s, f, _ in named.ranked[:3]]}
 

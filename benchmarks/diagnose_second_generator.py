@@ -45,7 +45,7 @@ def draw(job):
             return {**row, "named": "refused", "why": str(refusal)[-200:]}
     gap = next((g for _, f, g in named.ranked if f.effect == named.effect), named.gap_base)
     return {**row, "named": named.effect, "confidence": round(named.confidence, 4),
-            "weight": named.weight,
+            "weight": named.weight, "held": bool(named.doubts),
             "gap_before_over_noise": round(named.gap_base / named.noise, 3),
             "gap_over_noise": round(gap / named.noise, 3),
             "leading": [(f.effect, round(float(s), 1)) for s, f, _ in named.ranked[:3]],
