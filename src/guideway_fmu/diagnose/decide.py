@@ -268,12 +268,13 @@ def _passive_friction(ctx: Context, usable):
 
 
 def decide(run_dir) -> Naming:
-    """Load, calibrate, locate and name (steps 1-5) without co-simulating. Raises
+    """Load (``run_dir``: a folder, or a MeasuredRun already read), calibrate, locate and name
+    (steps 1-5) without co-simulating. Raises
     FileNotFoundError or ValueError (one message naming the file and the row, column, section
     or key) for a run that cannot be used, the motion's checks (record_checks.py: one way only,
     sampled too slowly for its strokes, a position of a handful of levels) included; their
     warnings join the run's."""
-    run = load_run(run_dir)
+    run = run_dir if isinstance(run_dir, MeasuredRun) else load_run(run_dir)
     source = run.path / "rig.toml"
     if run.kind != "horizontal_drive":
         raise ValueError(f"{source}: [rig] key 'kind': decide handles 'horizontal_drive' rigs; "

@@ -72,6 +72,7 @@ class MeasuredRun:
     friction_sign: str | None = None  # [channels] friction_sign as stated, or as found
     friction_sign_stated: bool = False
     channel_delay: float = 0.0  # s, the compared channel's delay behind the motion, undone
+    oriented: bool = False  # friction_force already turned along the motion (orient_friction)
 
     @property
     def channel_sign(self) -> float:
@@ -83,8 +84,9 @@ class MeasuredRun:
         """Turn a friction_force channel along the motion, by the stated [channels]
         friction_sign or, without it, by the sign the data show: the level of friction_force
         along sgn(v) over the samples moving faster than a tenth of the top speed."""
-        if "friction_force" not in self.columns:
+        if "friction_force" not in self.columns or self.oriented:
             return
+        self.oriented = True
         if self.friction_sign is None:
             v = np.asarray(velocity, dtype=float)
             moving = np.abs(v) > 0.1 * np.max(np.abs(v))

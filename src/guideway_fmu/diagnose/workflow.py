@@ -1,8 +1,8 @@
-"""The discrepancy workflow, ``diagnose(run_dir, out_dir)``: decide which effect the model
-misses (decide.py: load and check the run, derive the motion, calibrate the baseline, locate the
-gap, fit and score the candidates, name one), realise the named model as a scenario run
-through the FMUs (realise.py), and report (report.py: diagnosis.json, fit.csv, plots,
-report.html). Vertical responses take the same steps in vertical.py."""
+"""The discrepancy workflow, ``diagnose(run_dir, out_dir)``: read the measured run once
+(run_io.py), then the steps of its rig (rigs.py: a plug-in per [rig] kind): decide which
+effects the model misses (load and check, calibrate the baseline, locate the gap, fit and score
+the candidates, name them in turn), realise the named model as a scenario run through the FMUs,
+and report (report.py: diagnosis.json, fit.csv, plots, report.html)."""
 from __future__ import annotations
 
 import time as clock
@@ -11,11 +11,8 @@ from pathlib import Path
 from ..cosim.folder_lock import folder_lock
 from ..fmu_build import cache
 from ..output.progress import stages
-from .decide import decide
-from .realise import realise
-from .report import write_report, write_vertical_report
+from .rigs import RIGS
 from .run_io import load_run
-from .vertical import decide_vertical, realise_vertical
 
 
 def diagnose(run_dir, out_dir, fmu_dir=None, progress: bool = False) -> dict:
@@ -34,14 +31,11 @@ def diagnose(run_dir, out_dir, fmu_dir=None, progress: bool = False) -> dict:
     with stages(f"diagnose {Path(run_dir).name}", total=4, enabled=progress) as begin:
         begin("read the run")
         run = load_run(run_dir)
-        vertical = run.kind == "vertical_response"
+        rig = RIGS[run.kind]()  # run_io checked the kind against the format's
         with folder_lock(out):
             begin("fit and score the candidate effects")
-            naming = (decide_vertical(run, out / "model", fmus) if vertical
-                      else decide(run_dir))
+            naming = rig.decide(run, out, fmus)
             begin("co-simulate the named model")
-            realised = realise_vertical(naming, out) if vertical else realise(naming, out, fmus)
+            realised = rig.realise(naming, out, fmus)
             begin("write the report")
-            seconds = clock.perf_counter() - started
-            return (write_vertical_report(out, naming, realised, seconds) if vertical
-                    else write_report(out, naming, realised, seconds))
+            return rig.report(out, naming, realised, clock.perf_counter() - started)
