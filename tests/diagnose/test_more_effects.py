@@ -27,8 +27,9 @@ def test_extension_of_an_added_mass_is_its_inertia_and_the_baseline_has_none_han
     fitted = UnmodeledMass().fit(ctx, fit_mask)
     # the mass candidate's columns are the Coulomb column and a: beyond the baseline's form
     # (level, offset) it adds extra_mass * a, exactly
-    np.testing.assert_allclose(extension(ctx, fitted), fitted.parameters["extra_mass"] * ctx.motion.a,
-                               rtol=0, atol=1e-9 * np.ptp(ctx.y))
+    np.testing.assert_allclose(extension(ctx, fitted),
+                               fitted.parameters["extra_mass"] * ctx.motion.a, rtol=0,
+                               atol=1e-9 * np.ptp(ctx.y))
     np.testing.assert_allclose(extension(ctx, BASELINE.fit(ctx, fit_mask)), 0.0,
                                atol=1e-9 * np.ptp(ctx.y))
 

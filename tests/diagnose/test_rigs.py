@@ -2,6 +2,8 @@
 has one, and a run is read once."""
 from __future__ import annotations
 
+import pytest
+
 from guideway_fmu.diagnose import decide as decide_module
 from guideway_fmu.diagnose import rigs, run_io
 from guideway_synthetic import second_truth
@@ -33,3 +35,18 @@ def test_friction_is_turned_along_the_motion_once(tmp_path):
     turned = run.columns["friction_force"].copy()
     run.orient_friction(v)
     assert (run.columns["friction_force"] == turned).all()
+
+
+def test_a_rig_without_its_three_steps_cannot_be_made():
+    class Half(rigs.Rig):
+        kind = "half_for_the_test"
+
+        def decide(self, run, out, fmu_dir):
+            return None
+
+    try:
+        assert rigs.RIGS["half_for_the_test"] is Half  # subclassing registered it
+        with pytest.raises(TypeError, match="realise"):
+            Half()
+    finally:
+        del rigs.RIGS["half_for_the_test"]

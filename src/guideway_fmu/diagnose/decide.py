@@ -15,10 +15,11 @@
    (1 + 3 / sqrt(2 n): 2.7 % for n = 6000), its score exceeds SCORE_MIN and that of a law in
    foreign terms, and it explains at least EXPLAINED of the gap's excess variance over the
    noise, alone or, with its score above SCORE_MIN, together with the effects step 5 names
-   after it (two effects of about equal size each leave the other's gap); else ``unknown`` with a sparse-regression law for the residual when such a law (or
-   the foreign one) scores above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap
-   exceeds UNRESOLVED times the whole noise (locate.incoherent_noise: noise of any colour, where
-   the white floor sees only its high-frequency part), and the same holds on the samples whose
+   after it (two effects of about equal size each leave the other's gap); else ``unknown``
+   with a sparse-regression law for the residual when such a law (or the foreign one) scores
+   above SCORE_MIN and explains LAW_EXPLAINED of it, or when the gap exceeds UNRESOLVED times
+   the whole noise (locate.incoherent_noise: noise of any colour, where the white floor sees
+   only its high-frequency part), and the same holds on the samples whose
    derived acceleration the filter resolves (signals.Motion.unresolved: a gap at the corners of
    the acceleration alone is the input's error times the mass); else ``none``: a small gap
    that neither physics nor a law accounts for is taken as what the data cannot resolve

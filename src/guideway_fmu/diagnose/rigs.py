@@ -25,6 +25,7 @@ generator written independently of its candidates.
 """
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from pathlib import Path
 
 from .decide import decide
@@ -37,7 +38,7 @@ from .vertical import decide_vertical, realise_vertical
 RIGS: dict[str, type["Rig"]] = {}
 
 
-class Rig:
+class Rig(ABC):
     """A kind of test rig (module docstring); subclassing with a ``kind`` registers it."""
 
     kind: str = ""
@@ -46,14 +47,17 @@ class Rig:
         super().__init_subclass__(**kwargs)
         RIGS[cls.kind] = cls
 
+    @abstractmethod
     def decide(self, run: MeasuredRun, out: Path, fmu_dir: Path):
-        raise NotImplementedError
+        """The naming of ``run`` (module docstring); ``out``: the report's folder."""
 
+    @abstractmethod
     def realise(self, naming, out: Path, fmu_dir: Path):
-        raise NotImplementedError
+        """The named model co-simulated through the FMUs of ``fmu_dir``, written into ``out``."""
 
+    @abstractmethod
     def report(self, out: Path, naming, realised, seconds: float) -> dict:
-        raise NotImplementedError
+        """Write the report into ``out``; return diagnosis.json's content."""
 
 
 class HorizontalDrive(Rig):

@@ -426,8 +426,9 @@ def fit_candidate(rig: VerticalRig, candidate: Candidate, y, mask) -> VerticalFi
     a bounded scalar search within TUNED_SPAN of it (the residual's basin around the true value
     is narrow: a free vibration of hundreds of periods dephases within a fraction of a per
     cent of frequency), and again around the value whose simulation vibrates at the measured
-    frequency (:func:`_frequency_match`), the least residual kept; else Gauss-Newton, y - f(q) ~ J dq + c with J the secant slope of the
-    two best simulations, each step at most TRUST. At most SIMULATIONS simulations."""
+    frequency (:func:`_frequency_match`), the least residual kept; else Gauss-Newton,
+    y - f(q) ~ J dq + c with J the secant slope of the two best simulations, each step at most
+    TRUST. At most SIMULATIONS simulations."""
     lo, hi = candidate.bounds
     to_q = (lambda v: math.log(v)) if candidate.log else (lambda v: v / rig.base.mass)
     from_q = (lambda q: math.exp(q)) if candidate.log else (lambda q: q * rig.base.mass)
