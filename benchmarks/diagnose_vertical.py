@@ -67,7 +67,7 @@ def _generate(job: dict, run: Path):
 def one_draw(job: dict) -> dict:
     """Generate and diagnose one record (in a worker process of its own); its row."""
     warnings.simplefilter("ignore")
-    from guideway_fmu.diagnose import workflow
+    from guideway_fmu.diagnose import rigs, workflow
     row = {k: job[k] for k in ("generator", "effect", "seed")}
     row["expected"] = effects(job["generator"])[job["effect"]]
     spent, returned = {}, {}
@@ -82,8 +82,8 @@ def one_draw(job: dict) -> dict:
                 spent[step] = time.perf_counter() - began
         return timed
 
-    workflow.decide_vertical = timing("decide", workflow.decide_vertical)
-    workflow.realise_vertical = timing("realise", workflow.realise_vertical)
+    rigs.decide_vertical = timing("decide", rigs.decide_vertical)
+    rigs.realise_vertical = timing("realise", rigs.realise_vertical)
     with tempfile.TemporaryDirectory() as folder:
         stage = "generator"
         try:
