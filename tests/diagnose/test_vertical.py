@@ -391,3 +391,16 @@ def test_frequency_match_finds_the_value_through_a_stepped_peak_estimate_hand_ca
     matched = vertical._frequency_match(rig, evaluate, 4383.3, -0.5, 1.0)
     assert abs(matched - 383.3 / 4000.0) <= 1.0 / 4000.0
     assert vertical._frequency_match(rig, evaluate, 9000.0, -0.5, 1.0) is None  # not bracketed
+
+
+def test_frequency_match_keeps_the_closest_match_where_a_simulation_shows_no_peak():
+    # no clear peak (None) for 0 < q < 0.2: Brent's first steps land there; the closest of the
+    # values met is kept, not SciPy's NaN error
+    def peak(f):
+        q = f[0] / 4000.0 - 1.0
+        return None if 0.0 < q < 0.2 else 4000.0 * (1.0 + q)
+
+    rig = SimpleNamespace(measured_natural_frequency=peak)
+    matched = vertical._frequency_match(rig, lambda q: (q, np.array([4000.0 * (1.0 + q)])),
+                                        4383.3, -0.5, 1.0)
+    assert matched is not None and not 0.0 < matched < 0.2

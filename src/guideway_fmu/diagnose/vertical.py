@@ -404,8 +404,9 @@ def _frequency_match(rig: VerticalRig, evaluate, measured: float, q_lo: float,
     """The q in [q_lo, q_hi] whose simulation (``evaluate(q)[1]``) vibrates closest to the
     ``measured`` free-vibration frequency [Hz], by Brent's method over the whole range where
     its ends bracket it (the frequency is monotone in a mass or a preload; its estimate moves
-    in steps over small changes of q, which the bisection steps tolerate); else None. The
-    secant steps from the linearised estimate stall where two estimates are equal."""
+    in steps over small changes of q, which the bisection steps tolerate; where a simulation on
+    the way shows no clear peak, the closest match met so far); else None. The secant steps
+    from the linearised estimate stall where two estimates are equal."""
     errors = {}
 
     def error(q):
@@ -416,7 +417,10 @@ def _frequency_match(rig: VerticalRig, evaluate, measured: float, q_lo: float,
 
     if not error(q_lo) * error(q_hi) < 0.0:
         return None
-    brentq(error, q_lo, q_hi, xtol=1e-5, maxiter=BRENT_STEPS, disp=False)
+    try:
+        brentq(error, q_lo, q_hi, xtol=1e-5, maxiter=BRENT_STEPS, disp=False)
+    except ValueError:  # a simulation on the way shows no clear peak: the closest one met serves
+        pass
     return min((q for q in errors if np.isfinite(errors[q])), key=lambda q: abs(errors[q]))
 
 
